@@ -1,0 +1,163 @@
+/* quadgl: smooth quadrilaterals for OpenGL (Hormann & Tarini 2004 mean value coordinates).
+ *
+ * Three layers share this header:
+ *   - the numeric core (qgl_weights & friends): pure C, no GL, usable anywhere;
+ *   - the software renderer (qgl_sw_*): quads drawn by every known method into float buffers;
+ *   - the GL helper (qgl_gl_* and the qgl* immediate API): smooth quads inside a live GL context.
+ *
+ * Conventions: corners come in GL order (0,1,2,3 around the quad). Clip-space corners are
+ * (x, y, z, w); screen points are normalized device coordinates. Every function that takes
+ * geometry accepts any finite or non-finite input without crashing; bad input returns a
+ * documented negative code and leaves outputs finite. */
+#ifndef QUADGL_H
+#define QUADGL_H
+
+#include <stddef.h>
+
+#if defined(QGL_BUILDING) && defined(__GNUC__)
+#define QGL_API __attribute__((visibility("default")))
+#else
+#define QGL_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define QGL_VERSION_MAJOR 0
+#define QGL_VERSION_MINOR 1
+
+/* ---- weights ---------------------------------------------------------------------------- */
+
+/* Return codes of the weight and classification functions. */
+enum {
+    QGL_OUTSIDE = 0,     /* point outside the quad; weights finite (mixed signs) */
+    QGL_INSIDE = 1,      /* point inside or on the boundary; weights >= 0, sum 1 */
+    QGL_DEGENERATE = -1, /* quad has no interior on screen (all corners collinear or
+                            coincident, or every w == 0); weights finite: on the degenerate
+                            outline they interpolate along it, elsewhere unspecified */
+    QGL_NONFINITE = -2   /* an input is NaN or infinite; weights = 1/4 each */
+};
+
+/* Perspective-correct mean value weights of the point (x, y), in normalized device
+ * coordinates, with respect to the quad whose corners are given in clip space
+ * (x, y, z, w), in GL order. persp receives lambda'_i (H&T eq. 10): an attribute is
+ * sum persp[i] * a_i. screen (may be NULL) receives lambda_i (eq. 7), used for depth.
+ * Returns QGL_INSIDE (1) when the point is inside or on the boundary, QGL_OUTSIDE (0)
+ * otherwise (weights still finite), or a negative QGL_DEGENERATE code when the quad has
+ * no interior on screen or an input is not finite (weights then finite and documented). */
+QGL_API int qgl_weights(const double clip[4][4], double x, double y, double persp[4], double screen[4]);
+QGL_API int qgl_weightsf(const float clip[4][4], float x, float y, float persp[4], float screen[4]);
+
+/* Screen-space (affine, no perspective) mean value weights of (x, y) with respect to the 2D
+ * quad v, with every w taken as +1. Same return codes. */
+QGL_API int qgl_weights2d(const double v[4][2], double x, double y, double lambda[4]);
+
+/* The formulas we compare against in the accuracy table (not for production use):
+ * H&T's pseudo-code as printed (t = (r r' - D) / A, no limits) and Bloomenthal's shader
+ * (abs(A) < 1e-6 ? 0 : ...), both in float. They return the raw perspective weights and
+ * may produce NaN or inf; that is what the table measures. */
+QGL_API void qgl_weights_paper(const float clip[4][4], float x, float y, float persp[4]);
+QGL_API void qgl_weights_bloomenthal(const float clip[4][4], float x, float y, float persp[4]);
+
+/* ---- classification and cover ------------------------------------------------------------ */
+
+typedef enum {
+    QGL_QUAD_CONVEX = 0,
+    QGL_QUAD_CONCAVE = 1,  /* one reflex corner */
+    QGL_QUAD_BOWTIE = 2,   /* self-intersecting: two lobes of opposite facing */
+    QGL_QUAD_EXTERNAL = 3, /* corners on both sides of the eye plane (w of mixed sign) */
+    QGL_QUAD_DEGENERATE = 4
+} qgl_quad_kind;
+
+/* A triangle of the cover: indices 0..3 name the quad's corners, 4 the bow-tie crossing
+ * point. Triangles keep the winding of the region they cover (a bow-tie's lobes differ). */
+typedef struct qgl_cover {
+    qgl_quad_kind kind;
+    int orientation;     /* +1 counter-clockwise, -1 clockwise, 0 (bow-tie or degenerate) */
+    int reflex;          /* concave: index of the reflex corner, else -1 */
+    int cross_edge;      /* bow-tie: 0 when edges 01 and 23 cross, 1 when 12 and 30, else -1 */
+    double cross[2];     /* bow-tie: the crossing point */
+    double cross_t;      /* bow-tie: crossing as a parameter along edge cross_edge (01 or 12) */
+    int ntri;            /* 0, 1 or 2 */
+    unsigned char tri[2][3];
+} qgl_cover;
+
+/* Classify the screen quad v (NDC or window coordinates; scale-free tolerances) and fill
+ * its exact cover: every interior point lies in exactly one triangle. Returns the kind, or
+ * QGL_NONFINITE. A collapsed edge (triangle-shaped quad) is convex with ntri == 1. */
+QGL_API int qgl_classify(const double v[4][2], qgl_cover *out);
+/* The same from clip-space corners: QGL_QUAD_EXTERNAL when the w differ in sign (the cover
+ * is then left to a homogeneous clipper: ntri == 0). */
+QGL_API int qgl_classify_clip(const double clip[4][4], qgl_cover *out);
+
+/* Membership test of H&T eq. (12) on the screen quad v: +1 inside and front-facing
+ * (counter-clockwise locally), -1 inside and back-facing, 0 outside. Points exactly on an
+ * edge count as inside. */
+QGL_API int qgl_inside(const double v[4][2], double x, double y);
+
+/* ---- affinity ---------------------------------------------------------------------------- */
+
+/* Planarity: the distance of the corners from their best plane, relative to the quad's
+ * size, is at most rel_tol. */
+QGL_API int qgl_is_planar(const double p[4][3], double rel_tol);
+/* Oliveira's parallelogram test on a quad of dim-vector corners (corner i at q + i*dim):
+ * |V1.V2 - V3.V4| < tol and |V1.V4 - V2.V3| < tol (unnormalized, as in the paper). */
+QGL_API int qgl_is_parallelogram(const double *q, int dim, double tol);
+/* Bloomenthal's affinity test (JCGT 2022, listing 3): the barycentric coordinates of each
+ * corner with respect to the other three agree in geometry (dim_a, e.g. 3) and attribute
+ * (dim_b, e.g. 2 for uv) space within tol. */
+QGL_API int qgl_bloomenthal_affine(const double *geom, int dim_g, const double *attr, int dim_a,
+                                   double tol);
+/* The diagonal split is exact for this quad: it is planar and every attribute is affine in
+ * object space over it (corner 3's attributes are the affine image of corners 0..2's). attr
+ * holds nattr floats per corner. Relative tolerance rel_tol. */
+QGL_API int qgl_split_is_exact(const double p[4][3], const double *attr, int nattr, double rel_tol);
+
+/* ---- subdivision -------------------------------------------------------------------------- */
+
+/* A triangle soup: n triangles, each 3 vertices of stride doubles (position first, the
+ * layout is the caller's). Grown with realloc; free with qgl_mesh_free. */
+typedef struct qgl_mesh {
+    double *v;
+    int stride;
+    int ntri;
+    int cap;
+} qgl_mesh;
+
+QGL_API void qgl_mesh_free(qgl_mesh *m);
+
+/* Bailey's SuperQuad: bilinear n x n subdivision of a quad whose corners are stride doubles
+ * each (every component interpolated bilinearly), appended to out as 2 n^2 triangles.
+ * Returns 0, or -1 on bad arguments or allocation failure (out unchanged). */
+QGL_API int qgl_subdiv_bilinear(const double *quad, int stride, int n, qgl_mesh *out);
+
+/* Oliveira's adaptive subdivision. Corners are stride doubles: object position at pos_off
+ * (3 doubles), texture coordinates at tex_off (2 doubles, or -1 for none), clip position at
+ * clip_off (4 doubles, or -1 to skip the screen criterion); viewport size in pixels for the
+ * area. Zero fields of the params take the paper's values. */
+typedef struct qgl_adaptive_params {
+    double threshold_q;   /* object space, default 1e-3 */
+    double threshold_t;   /* texture space, default 1e-4 */
+    double min_area_px;   /* stop below this projected area, default 200 */
+    int max_depth;        /* default 8 */
+    double viewport[2];   /* pixels, for the area criterion */
+} qgl_adaptive_params;
+
+QGL_API int qgl_subdiv_adaptive(const double *quad, int stride, int pos_off, int tex_off, int clip_off,
+                                const qgl_adaptive_params *params, qgl_mesh *out);
+
+/* ---- inverse bilinear (Quilez), for comparison ---------------------------------------------- */
+
+/* Parameters (u, v) of the point (x, y) in the bilinear patch of the 2D quad q with corners
+ * q0 (0,0), q1 (1,0), q2 (1,1), q3 (0,1). Stable quadratic; returns 1 when a root in
+ * [0,1]^2 exists, 0 when not (uv then the nearest root), QGL_NONFINITE on bad input. */
+QGL_API int qgl_inv_bilinear(const double q[4][2], double x, double y, double uv[2]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#include <quadgl/render.h> /* the software renderer */
+#include <quadgl/gl.h>     /* the GL helper */
+#endif
