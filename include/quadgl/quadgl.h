@@ -85,28 +85,38 @@ typedef struct qgl_cover {
 
 /* Classify the screen quad v (NDC or window coordinates; scale-free tolerances) and fill
  * its exact cover: every interior point lies in exactly one triangle. Returns the kind, or
- * QGL_NONFINITE. A collapsed edge (triangle-shaped quad) is convex with ntri == 1. */
+ * QGL_NONFINITE (out then degenerate, ntri == 0). Three collinear corners (a collapsed edge,
+ * a straight corner, a spike, a bow-tie touching at a corner) leave a triangle: convex with
+ * ntri == 1. A turn below 64 eps of the quad's size counts as collinear. Convex quads split
+ * as (0,1,2),(0,2,3); concave ones along the diagonal from the reflex corner r as
+ * (r,r+1,r+2),(r,r+2,r+3). out may be NULL. */
 QGL_API int qgl_classify(const double v[4][2], qgl_cover *out);
-/* The same from clip-space corners: QGL_QUAD_EXTERNAL when the w differ in sign (the cover
- * is then left to a homogeneous clipper: ntri == 0). */
+/* The same from clip-space corners (x/w, y/w; all w > 0 or all w < 0). QGL_QUAD_EXTERNAL
+ * when the w differ in sign or some (not all) w are 0: the cover is then left to a
+ * homogeneous clipper (ntri == 0). Every w == 0: QGL_QUAD_DEGENERATE. */
 QGL_API int qgl_classify_clip(const double clip[4][4], qgl_cover *out);
 
 /* Membership test of H&T eq. (12) on the screen quad v: +1 inside and front-facing
  * (counter-clockwise locally), -1 inside and back-facing, 0 outside. Points exactly on an
- * edge count as inside. */
+ * edge count as inside (as front-facing when both apply); for a collinear quad, points on
+ * its outline. Non-finite input: 0. */
 QGL_API int qgl_inside(const double v[4][2], double x, double y);
 
 /* ---- affinity ---------------------------------------------------------------------------- */
 
-/* Planarity: the distance of the corners from their best plane, relative to the quad's
- * size, is at most rel_tol. */
+/* Planarity: the distance between the lines of the two diagonals (twice the corners'
+ * distance from the plane midway between them), relative to the quad's extent (largest
+ * coordinate difference from corner 0), is at most rel_tol. 0 for non-finite input. */
 QGL_API int qgl_is_planar(const double p[4][3], double rel_tol);
 /* Oliveira's parallelogram test on a quad of dim-vector corners (corner i at q + i*dim):
  * |V1.V2 - V3.V4| < tol and |V1.V4 - V2.V3| < tol (unnormalized, as in the paper). */
 QGL_API int qgl_is_parallelogram(const double *q, int dim, double tol);
 /* Bloomenthal's affinity test (JCGT 2022, listing 3): the barycentric coordinates of each
- * corner with respect to the other three agree in geometry (dim_a, e.g. 3) and attribute
- * (dim_b, e.g. 2 for uv) space within tol. */
+ * corner with respect to the other three agree in geometry (dim_g <= 16, e.g. 3) and
+ * attribute (dim_a <= 16, e.g. 2 for uv) space within tol (Euclidean norm; the listing's
+ * default is 0.01). Barycentrics are taken by least squares, so in 3D a corner off the plane
+ * of the others is projected onto it: combine with qgl_is_planar. A degenerate corner
+ * triangle in either space fails the test, as in the listing. */
 QGL_API int qgl_bloomenthal_affine(const double *geom, int dim_g, const double *attr, int dim_a,
                                    double tol);
 /* The diagonal split is exact for this quad: it is planar and every attribute is affine in
@@ -116,8 +126,9 @@ QGL_API int qgl_split_is_exact(const double p[4][3], const double *attr, int nat
 
 /* ---- subdivision -------------------------------------------------------------------------- */
 
-/* A triangle soup: n triangles, each 3 vertices of stride doubles (position first, the
- * layout is the caller's). Grown with realloc; free with qgl_mesh_free. */
+/* A triangle soup: ntri triangles, each 3 vertices of stride doubles (the layout is the
+ * caller's). Start from a zeroed struct; cap counts triangles. Grown with realloc; appending
+ * with a different stride fails. Free with qgl_mesh_free. */
 typedef struct qgl_mesh {
     double *v;
     int stride;
@@ -128,14 +139,23 @@ typedef struct qgl_mesh {
 QGL_API void qgl_mesh_free(qgl_mesh *m);
 
 /* Bailey's SuperQuad: bilinear n x n subdivision of a quad whose corners are stride doubles
- * each (every component interpolated bilinearly), appended to out as 2 n^2 triangles.
- * Returns 0, or -1 on bad arguments or allocation failure (out unchanged). */
+ * each (every component interpolated bilinearly, corners in GL order at (s,t) = (0,0),
+ * (1,0), (1,1), (0,1)), appended to out as 2 n^2 triangles: cells row by row in t, then in
+ * s, each as (0,1,2),(0,2,3) (the quad's winding). Points on an edge depend only on that
+ * edge's two corners, bitwise, so neighbouring quads stay watertight. Returns 0, or -1 on
+ * bad arguments or allocation failure (out's triangles unchanged). */
 QGL_API int qgl_subdiv_bilinear(const double *quad, int stride, int n, qgl_mesh *out);
 
 /* Oliveira's adaptive subdivision. Corners are stride doubles: object position at pos_off
  * (3 doubles), texture coordinates at tex_off (2 doubles, or -1 for none), clip position at
  * clip_off (4 doubles, or -1 to skip the screen criterion); viewport size in pixels for the
- * area. Zero fields of the params take the paper's values. */
+ * area (zero: no area criterion). Zero fields of the params take the paper's values. A cell
+ * is emitted as (0,1,2),(0,2,3) when its object and texture parallelogram differences are
+ * below the thresholds, its projected area (measured on its own clip corners; infinite when
+ * a w <= 0) is below min_area_px, or it is at max_depth (capped at 10); otherwise every
+ * component is split at the edge midpoints and centre. T-junctions between cells of
+ * different depth are not removed. Returns 0, or -1 on bad arguments, non-finite corners or
+ * allocation failure (out's triangles unchanged). */
 typedef struct qgl_adaptive_params {
     double threshold_q;   /* object space, default 1e-3 */
     double threshold_t;   /* texture space, default 1e-4 */
@@ -150,8 +170,10 @@ QGL_API int qgl_subdiv_adaptive(const double *quad, int stride, int pos_off, int
 /* ---- inverse bilinear (Quilez), for comparison ---------------------------------------------- */
 
 /* Parameters (u, v) of the point (x, y) in the bilinear patch of the 2D quad q with corners
- * q0 (0,0), q1 (1,0), q2 (1,1), q3 (0,1). Stable quadratic; returns 1 when a root in
- * [0,1]^2 exists, 0 when not (uv then the nearest root), QGL_NONFINITE on bad input. */
+ * q0 (0,0), q1 (1,0), q2 (1,1), q3 (0,1). Stable quadratic, no absolute thresholds; returns
+ * 1 when a root within 1e-12 of [0,1]^2 exists, 0 when not (uv then the root nearest the
+ * square, finite, or (0,0) when there is none), QGL_NONFINITE on non-finite input (uv (0,0)).
+ * uv may be NULL. */
 QGL_API int qgl_inv_bilinear(const double q[4][2], double x, double y, double uv[2]);
 
 #ifdef __cplusplus

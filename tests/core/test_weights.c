@@ -171,6 +171,13 @@ int main(int argc, char **argv)
         if (c->dist == 0 && ref == QGL_INSIDE)
             CHECK(code == QGL_INSIDE, c, "point on the boundary reported outside");
         check_invariants(c, code, pd);
+        if (c->clip[0][3] == 1 && c->clip[1][3] == 1 && c->clip[2][3] == 1 && c->clip[3][3] == 1) {
+            double v[4][2], l2[4];
+            for (int i = 0; i < 4; i++)
+                v[i][0] = c->clip[i][0], v[i][1] = c->clip[i][1];
+            int code2 = qgl_weights2d(v, c->p[0], c->p[1], l2);
+            CHECK(code2 == code && max_diff(l2, pd, 4) == 0, c, "qgl_weights2d differs from qgl_weights (w = 1)");
+        }
         check_rotation(c, pd);
 
         if (measurable(ref, rp, rs)) {
@@ -197,7 +204,7 @@ int main(int argc, char **argv)
         }
     }
 
-    const char *names[4] = {"H&T pseudo-code as printed (float)", "Bloomenthal, |A| < 1e-6 ? 0 (float)",
+    const char *names[4] = {"H&T pseudo-code as printed (float)", "Bloomenthal, t = 0 where abs(A) < 1e-6 (float)",
                             "quadgl qgl_weightsf (float)", "quadgl qgl_weights (double)"};
     FILE *out = table ? stdout : stderr;
     fprintf(out, "Weights on the hard-case suite: %d cases, %d with bounded reference weights\n\n", n, measured);

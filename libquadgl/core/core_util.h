@@ -1,0 +1,75 @@
+/* Private helpers of the numeric core: finiteness checks and scale-free normalization.
+ *
+ * Geometric predicates must not depend on where a quad sits or how big it is. Before any
+ * orientation is computed, points are translated to a local origin and scaled by powers of
+ * two (ldexp, exact) so that the largest coordinate is of order one: then a fixed threshold
+ * such as 64 eps is a tolerance relative to the quad's size, products cannot overflow or
+ * underflow, and signs are exactly those of the original configuration up to the rounding of
+ * the one translation. */
+#ifndef QGL_CORE_UTIL_H
+#define QGL_CORE_UTIL_H
+
+#include <float.h>
+#include <math.h>
+
+/* Orientations of normalized points at or below this are treated as zero (collinear). */
+#define QGL__COLLINEAR_EPS (64.0 * DBL_EPSILON)
+
+static inline int qgl__all_finite(const double *a, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(a[i]))
+            return 0;
+    return 1;
+}
+
+/* Exponent e such that ldexp(x, -e) lies in [0.5, 1) for the largest |x|; 0 for all zero. */
+static inline int qgl__exponent_of(double maxabs)
+{
+    int e = 0;
+    if (maxabs > 0)
+        frexp(maxabs, &e);
+    return e;
+}
+
+/* d[i] = (v[i] - origin), scaled exactly by a power of two so max |d| is in [0.5, 1).
+ * The first scaling makes the subtraction overflow-free; the second restores precision
+ * when the points are tiny next to their distance from zero. Inputs must be finite. */
+static inline void qgl__normalize2(const double (*v)[2], int n, const double origin[2], double (*d)[2])
+{
+    double m = fmax(fabs(origin[0]), fabs(origin[1]));
+    for (int i = 0; i < n; i++)
+        m = fmax(m, fmax(fabs(v[i][0]), fabs(v[i][1])));
+    int e1 = qgl__exponent_of(m);
+    double o0 = ldexp(origin[0], -e1), o1 = ldexp(origin[1], -e1);
+    double m2 = 0;
+    for (int i = 0; i < n; i++) {
+        d[i][0] = ldexp(v[i][0], -e1) - o0;
+        d[i][1] = ldexp(v[i][1], -e1) - o1;
+        m2 = fmax(m2, fmax(fabs(d[i][0]), fabs(d[i][1])));
+    }
+    int e2 = qgl__exponent_of(m2);
+    for (int i = 0; i < n; i++) {
+        d[i][0] = ldexp(d[i][0], -e2);
+        d[i][1] = ldexp(d[i][1], -e2);
+    }
+}
+
+static inline double qgl__cross2(const double a[2], const double b[2])
+{
+    return a[0] * b[1] - a[1] * b[0];
+}
+
+/* Twice the signed area of (a, b, c): positive when counter-clockwise. */
+static inline double qgl__orient2(const double a[2], const double b[2], const double c[2])
+{
+    double u[2] = {b[0] - a[0], b[1] - a[1]}, w[2] = {c[0] - a[0], c[1] - a[1]};
+    return qgl__cross2(u, w);
+}
+
+static inline int qgl__sign_tol(double x, double tol)
+{
+    return x > tol ? 1 : (x < -tol ? -1 : 0);
+}
+
+#endif

@@ -1,0 +1,208 @@
+/* Tests of the affinity predicates on constructed affine and non-affine quads.
+ *
+ * Planar quads are built as a random 2D quad placed on a random plane; attributes that must
+ * pass are a random affine map of position; attributes that must fail are the same with one
+ * corner moved by a stated fraction of the attribute range (well above the tolerance used).
+ * Every case is also repeated far from the origin and at extreme scales. */
+#include <quadgl/quadgl.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int failures;
+#define CHECK(cond, ...)                                                                            \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            failures++;                                                                            \
+            if (failures < 40) {                                                                   \
+                printf("FAIL %s:%d: ", __FILE__, __LINE__);                                        \
+                printf(__VA_ARGS__);                                                               \
+                printf("\n");                                                                      \
+            }                                                                                      \
+        }                                                                                          \
+    } while (0)
+
+static double urand(void)
+{
+    return rand() / (RAND_MAX + 1.0) - 0.5;
+}
+
+/* A random convex 2D quad (perturbed square) in [-1,1]^2. */
+static void random_quad2(double q[4][2])
+{
+    const double sq[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 2; k++)
+            q[i][k] = 0.5 * sq[i][k] + 0.4 * urand();
+}
+
+/* Place 2D points on a random plane: origin o, basis (a, b), times scale. A "flat" plane
+ * is z = const, which stays exactly planar after the coordinates are rounded (far from the
+ * origin, rounding alone moves corners by 1e-6 of a 1e-4 quad at 1e6). */
+static void embed(const double q[4][2], double scale, double off, int flat, double p[4][3], double frame[3][3])
+{
+    for (int k = 0; k < 3; k++) {
+        frame[0][k] = k == 2 && flat ? 0 : urand();
+        frame[1][k] = k == 2 && flat ? 0 : urand();
+        frame[2][k] = off + scale * urand();
+    }
+    frame[0][0] += 1; /* keep the basis away from degenerate */
+    frame[1][1] += 1;
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            p[i][k] = frame[2][k] + scale * (q[i][0] * frame[0][k] + q[i][1] * frame[1][k]);
+}
+
+static void check_planarity(void)
+{
+    const double scales[4][2] = {{1, 0}, {1e-4, 1e6}, {1e-200, 0}, {1e200, 1e201}};
+    for (int sc = 0; sc < 4; sc++)
+        for (int it = 0; it < 500; it++) {
+            double q[4][2], p[4][3], f[3][3];
+            random_quad2(q);
+            embed(q, scales[sc][0], scales[sc][1], sc == 1, p, f);
+            CHECK(qgl_is_planar(p, 1e-9), "planar quad rejected (scale %g)", scales[sc][0]);
+            /* lift corner 3 off the plane by 1e-6 of the size along the normal */
+            double n[3] = {f[0][1] * f[1][2] - f[0][2] * f[1][1], f[0][2] * f[1][0] - f[0][0] * f[1][2],
+                           f[0][0] * f[1][1] - f[0][1] * f[1][0]};
+            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int k = 0; k < 3; k++)
+                p[3][k] += 1e-6 * scales[sc][0] * n[k] / len;
+            if (sc != 1) /* at 1e6 the 1e-10 lift is below the coordinates' resolution */
+                CHECK(!qgl_is_planar(p, 1e-9), "lifted quad accepted at 1e-9 (scale %g)", scales[sc][0]);
+            CHECK(qgl_is_planar(p, 1e-5), "slightly lifted quad rejected at 1e-5 (scale %g)", scales[sc][0]);
+        }
+    const double twisted[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}};
+    CHECK(!qgl_is_planar(twisted, 1e-3), "twisted quad accepted");
+    CHECK(qgl_is_planar(twisted, 0.2), "twist 0.1 rejected at 0.2");
+    const double tri[4][3] = {{0, 0, 0}, {0, 0, 0}, {1, 2, 3}, {-1, 5, 2}};
+    CHECK(qgl_is_planar(tri, 0), "collapsed edge (three points) not planar");
+    const double nan[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, NAN, 0}, {0, 1, 0}};
+    CHECK(!qgl_is_planar(nan, 1), "NaN accepted as planar");
+}
+
+static void check_parallelogram(void)
+{
+    for (int it = 0; it < 200; it++) {
+        /* integer corners: the dot products are exact */
+        double a[2] = {rand() % 100, rand() % 100}, u[2] = {rand() % 50 - 25, rand() % 50 - 25},
+               w[2] = {rand() % 50 - 25, rand() % 50 - 25};
+        double par[8] = {a[0], a[1], a[0] + u[0], a[1] + u[1], a[0] + u[0] + w[0], a[1] + u[1] + w[1],
+                         a[0] + w[0], a[1] + w[1]};
+        CHECK(qgl_is_parallelogram(par, 2, 1e-9), "sheared parallelogram rejected");
+        par[4] += 1; /* corner C moved by one unit: a trapezoid-like quad */
+        CHECK(!qgl_is_parallelogram(par, 2, 1e-3) || (u[0] == 0 && u[1] == 0) || (w[0] == 0 && w[1] == 0),
+              "moved corner accepted");
+    }
+    const double trap[8] = {0, 0, 4, 0, 3, 1, 1, 1};
+    CHECK(!qgl_is_parallelogram(trap, 2, 1e-3), "trapezoid accepted");
+    const double par3[12] = {0, 0, 0, 1, 0, 1, 1.5, 1, 1, 0.5, 1, 0};
+    CHECK(qgl_is_parallelogram(par3, 3, 1e-12), "3D parallelogram rejected");
+    const double kite[8] = {0, 0, 1, -1, 3, 0, 1, 1};
+    CHECK(!qgl_is_parallelogram(kite, 2, 1e-3), "kite accepted");
+}
+
+/* attr = M pos + c for a random affine M (dim_a x dim_g). */
+static void affine_attr(const double *pos, int dim_g, double *attr, int dim_a, double arange)
+{
+    double m[16][16], c[16];
+    for (int r = 0; r < dim_a; r++) {
+        c[r] = arange * urand();
+        for (int k = 0; k < dim_g; k++)
+            m[r][k] = arange * urand();
+    }
+    for (int i = 0; i < 4; i++)
+        for (int r = 0; r < dim_a; r++) {
+            double s = c[r];
+            for (int k = 0; k < dim_g; k++)
+                s += m[r][k] * pos[i * dim_g + k];
+            attr[i * dim_a + r] = s;
+        }
+}
+
+/* uv = M q + c with M well conditioned (det >= 0.16): Bloomenthal's comparison is made in uv
+ * space, where a nearly singular map would make the barycentrics themselves ill-posed. */
+static void uv_map(const double q[4][2], double uv[8])
+{
+    double m[2][2] = {{1 + urand(), 0.6 * urand()}, {0.6 * urand(), 1 + urand()}}, c[2] = {urand(), urand()};
+    for (int i = 0; i < 4; i++)
+        for (int r = 0; r < 2; r++)
+            uv[i * 2 + r] = c[r] + m[r][0] * q[i][0] + m[r][1] * q[i][1];
+}
+
+static void check_bloomenthal(void)
+{
+    for (int it = 0; it < 500; it++) {
+        double q[4][2], p[4][3], f[3][3], uv[8], uv2[8];
+        random_quad2(q);
+        embed(q, 1, 0, 0, p, f);
+        uv_map(q, uv);
+        CHECK(qgl_bloomenthal_affine(&p[0][0], 3, uv, 2, 1e-9), "3D affine uv rejected");
+        CHECK(qgl_bloomenthal_affine(&q[0][0], 2, uv, 2, 1e-9), "2D affine uv rejected");
+        double big[4][2], rel[4][2];
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 2; k++) {
+                big[i][k] = 1e6 + 1e-3 * q[i][k];
+                rel[i][k] = (big[i][k] - 1e6) * 1e3; /* affine in the rounded corners */
+            }
+        uv_map((const double (*)[2])rel, uv2);
+        CHECK(qgl_bloomenthal_affine(&big[0][0], 2, uv2, 2, 1e-6), "affine uv rejected at 1e6");
+        uv[5] += 0.05; /* corner 2's v by about 5% of the range */
+        CHECK(!qgl_bloomenthal_affine(&p[0][0], 3, uv, 2, 1e-3), "perturbed uv accepted");
+    }
+    const double trap[8] = {0, 0, 4, 0, 3, 1, 1, 1}, sq[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    CHECK(!qgl_bloomenthal_affine(trap, 2, sq, 2, 0.01), "trapezoid onto square accepted");
+    const double nan[8] = {0, 0, 1, 0, NAN, 1, 0, 1};
+    CHECK(!qgl_bloomenthal_affine(nan, 2, sq, 2, 1), "NaN accepted");
+}
+
+static void check_split_exact(void)
+{
+    const double scales[3][2] = {{1, 0}, {1e-4, 1e6}, {1e100, 0}};
+    for (int sc = 0; sc < 3; sc++)
+        for (int it = 0; it < 500; it++) {
+            double q[4][2], p[4][3], f[3][3], a[20];
+            random_quad2(q);
+            embed(q, scales[sc][0], scales[sc][1], sc == 1, p, f);
+            /* attributes: affine in position (5 of them, ranges of 1 and 1e3) */
+            double rel[4][3];
+            for (int i = 0; i < 4; i++)
+                for (int k = 0; k < 3; k++)
+                    rel[i][k] = (p[i][k] - p[0][k]) / scales[sc][0];
+            affine_attr(&rel[0][0], 3, a, 5, it % 2 ? 1 : 1e3);
+            CHECK(qgl_split_is_exact(p, a, 5, 1e-9), "affine attributes rejected (scale %g)", scales[sc][0]);
+            int corner = it & 3, comp = it % 5;
+            double lo = a[comp], hi = a[comp];
+            for (int i = 1; i < 4; i++) {
+                lo = fmin(lo, a[i * 5 + comp]);
+                hi = fmax(hi, a[i * 5 + comp]);
+            }
+            a[corner * 5 + comp] += 1e-6 * (hi - lo);
+            CHECK(!qgl_split_is_exact(p, a, 5, 1e-9), "perturbed attribute accepted (scale %g)", scales[sc][0]);
+            CHECK(qgl_split_is_exact(p, a, 5, 1e-4), "1e-6 perturbation rejected at 1e-4");
+        }
+    const double twisted[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}};
+    const double affine_on_twisted[4] = {0, 1, 2, 1}; /* u + v: would be affine if planar */
+    CHECK(!qgl_split_is_exact(twisted, affine_on_twisted, 1, 1e-6), "non-planar quad split called exact");
+    const double pole[4][3] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+    const double same[4] = {0.5, 0.5, 0, 1}, diff[4] = {0.25, 0.75, 0, 1};
+    CHECK(qgl_split_is_exact(pole, same, 1, 1e-9), "collapsed edge with equal attributes rejected");
+    CHECK(!qgl_split_is_exact(pole, diff, 1, 1e-9), "pole with different attributes accepted");
+    const double trap[4][3] = {{0, 0, 0}, {4, 0, 0}, {3, 1, 0}, {1, 1, 0}};
+    const double u[4] = {0, 1, 1, 0}, x[4] = {0, 4, 3, 1};
+    CHECK(!qgl_split_is_exact(trap, u, 1, 1e-6), "square texture on trapezoid accepted");
+    CHECK(qgl_split_is_exact(trap, x, 1, 1e-12), "x on trapezoid rejected");
+    CHECK(qgl_split_is_exact(trap, NULL, 0, 1e-12), "no attributes: planar quad rejected");
+}
+
+int main(void)
+{
+    srand(777);
+    check_planarity();
+    check_parallelogram();
+    check_bloomenthal();
+    check_split_exact();
+    printf("%d failures\n", failures);
+    return failures ? 1 : 0;
+}
