@@ -1,10 +1,181 @@
-/* quadgl: the gl layer's public API (included by quadgl/quadgl.h). */
+/* quadgl: the gl layer's public API (included by quadgl/quadgl.h).
+ *
+ * A qgl_context lives inside the application's current GL context. It captures quads (the
+ * qgl* immediate API below, or qgl_draw_quads) and draws them through the real driver so that
+ * attributes follow the mean value interpolation instead of the diagonal split. Everything
+ * that is not a quad goes straight to the driver. The layer never calls a gl* symbol of its
+ * own: every GL entry point is looked up through the desc's get_proc (or the window system's
+ * own GetProcAddress), so a library that exports gl* names itself can drive it. */
 #ifndef QUADGL_GL_H
 #define QUADGL_GL_H
 #include <quadgl/quadgl.h>
+#include <stdint.h>
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* How quads are drawn. AUTO plans per quad: the driver's split where it is exact (planar,
+ * attributes affine in object space) or invisible (tiny on screen), the smooth path
+ * otherwise. MVC forces the smooth path, SPLIT the driver's own quads, SUBDIV the CPU
+ * subdivision fallback. */
+typedef enum qgl_method {
+    QGL_METHOD_AUTO = 0,
+    QGL_METHOD_MVC = 1,
+    QGL_METHOD_SPLIT = 2,
+    QGL_METHOD_SUBDIV = 3
+} qgl_method;
+
+typedef struct qgl_context qgl_context;
+
+/* Zero means default for every field. */
+typedef struct qgl_gl_desc {
+    qgl_method method;         /* default AUTO, or the environment's QUADGL_METHOD */
+    float tolerance_px;        /* fallback's screen tolerance; default QUADGL_TOLERANCE or 0.5 */
+    float invisible_area_px;   /* AUTO: quads whose screen bounding box is smaller than this
+                                  (pixels^2: a 2 x 2 pixel quad shows no crease) are split;
+                                  default 4 */
+    void *(*get_proc)(const char *name); /* resolver of GL entry points; default: the window
+                                            system's GetProcAddress, then dlsym */
+    int force_fallback;        /* never use shaders (as on a GL 1.x context) */
+    int max_glsl;              /* cap the GLSL version used (e.g. 120); 0 = no cap */
+} qgl_gl_desc;
+
+/* Counters of what took which path; quads counts every quad seen, the others add up to it. */
+typedef struct qgl_gl_stats_t {
+    uint64_t quads;       /* quads received */
+    uint64_t mvc;         /* drawn by the shader path */
+    uint64_t split;       /* drawn by the driver's split (exact, invisible or method SPLIT) */
+    uint64_t subdiv;      /* drawn by the CPU subdivision fallback */
+    uint64_t passthrough; /* handed to the driver as is (polygon mode, select/feedback) */
+    uint64_t draws;       /* driver draw calls issued by the layer */
+    uint64_t subdiv_triangles; /* triangles the fallback produced */
+} qgl_gl_stats_t;
+
+/* Create inside the current GL context (GL 1.3 or later, compatibility profile); NULL when
+ * the entry points cannot be resolved. */
+QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc);
+QGL_API void qgl_gl_destroy(qgl_context *ctx);
+QGL_API void qgl_gl_make_current(qgl_context *ctx); /* per thread */
+QGL_API qgl_context *qgl_gl_current(void);
+QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method);
+QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx);
+/* The shader path the context found: 0 none (CPU fallback only), 150 (geometry shader, GL 3.2
+ * compatibility). A GLSL 1.20 path for GL 2.x is planned, not built. */
+QGL_API int qgl_gl_shader_level(const qgl_context *ctx);
+QGL_API void qgl_gl_stats(const qgl_context *ctx, qgl_gl_stats_t *out);
+QGL_API void qgl_gl_reset_stats(qgl_context *ctx);
+
+/* ---- batches -------------------------------------------------------------------------- */
+
+typedef enum qgl_topology {
+    QGL_QUADS = 0,      /* 4 vertices per quad */
+    QGL_QUAD_STRIP = 1  /* 2 + 2 per quad; quad k is v2k, v2k+1, v2k+3, v2k+2 */
+} qgl_topology;
+
+/* One attribute array. size 0 = absent. type is a GL type enum: GL_FLOAT for all, and
+ * GL_UNSIGNED_BYTE (normalized) or GL_DOUBLE where noted; 0 means GL_FLOAT. stride 0 means
+ * tightly packed. */
+typedef struct qgl_attrib {
+    const void *ptr;
+    int size;
+    unsigned type;
+    int stride;
+} qgl_attrib;
+
+#define QGL_MAX_TEXUNITS 4
+
+typedef struct qgl_quad_batch {
+    qgl_topology topology;
+    int count;                /* vertices (or indices when indices != NULL) */
+    const uint32_t *indices;  /* optional */
+    qgl_attrib position;      /* size 2, 3 or 4; float or double */
+    qgl_attrib color;         /* size 3 or 4; float, double or unsigned byte */
+    qgl_attrib normal;        /* size 3 */
+    qgl_attrib texcoord[QGL_MAX_TEXUNITS]; /* size 1..4, unit i */
+    qgl_attrib secondary_color; /* size 3 */
+    qgl_attrib fog_coord;     /* size 1 */
+} qgl_quad_batch;
+
+/* Draw the quads of b in the current GL state. Returns the number of quads drawn, or a
+ * negative value on bad arguments (nothing drawn). The current colour, normal and texture
+ * coordinates are left as they were. */
+QGL_API int qgl_draw_quads(qgl_context *ctx, const qgl_quad_batch *b);
+
+/* ---- immediate mode, GL's own signatures, on the current qgl context ---------------------- */
+/* GL_QUADS and GL_QUAD_STRIP are captured and drawn at qglEnd; every other primitive, and
+ * every call outside qglBegin/qglEnd, goes to the driver unchanged. */
+
+QGL_API void qglBegin(unsigned mode);
+QGL_API void qglEnd(void);
+
+QGL_API void qglVertex2f(float x, float y);
+QGL_API void qglVertex2d(double x, double y);
+QGL_API void qglVertex2i(int x, int y);
+QGL_API void qglVertex2s(short x, short y);
+QGL_API void qglVertex3f(float x, float y, float z);
+QGL_API void qglVertex3d(double x, double y, double z);
+QGL_API void qglVertex3i(int x, int y, int z);
+QGL_API void qglVertex3s(short x, short y, short z);
+QGL_API void qglVertex4f(float x, float y, float z, float w);
+QGL_API void qglVertex4d(double x, double y, double z, double w);
+QGL_API void qglVertex4i(int x, int y, int z, int w);
+QGL_API void qglVertex4s(short x, short y, short z, short w);
+QGL_API void qglVertex2fv(const float *v);
+QGL_API void qglVertex2dv(const double *v);
+QGL_API void qglVertex2iv(const int *v);
+QGL_API void qglVertex2sv(const short *v);
+QGL_API void qglVertex3fv(const float *v);
+QGL_API void qglVertex3dv(const double *v);
+QGL_API void qglVertex3iv(const int *v);
+QGL_API void qglVertex3sv(const short *v);
+QGL_API void qglVertex4fv(const float *v);
+QGL_API void qglVertex4dv(const double *v);
+QGL_API void qglVertex4iv(const int *v);
+QGL_API void qglVertex4sv(const short *v);
+
+QGL_API void qglColor3f(float r, float g, float b);
+QGL_API void qglColor3d(double r, double g, double b);
+QGL_API void qglColor3ub(unsigned char r, unsigned char g, unsigned char b);
+QGL_API void qglColor4f(float r, float g, float b, float a);
+QGL_API void qglColor4d(double r, double g, double b, double a);
+QGL_API void qglColor4ub(unsigned char r, unsigned char g, unsigned char b, unsigned char a);
+QGL_API void qglColor3fv(const float *v);
+QGL_API void qglColor3dv(const double *v);
+QGL_API void qglColor3ubv(const unsigned char *v);
+QGL_API void qglColor4fv(const float *v);
+QGL_API void qglColor4dv(const double *v);
+QGL_API void qglColor4ubv(const unsigned char *v);
+
+QGL_API void qglNormal3f(float x, float y, float z);
+QGL_API void qglNormal3d(double x, double y, double z);
+QGL_API void qglNormal3fv(const float *v);
+QGL_API void qglNormal3dv(const double *v);
+
+QGL_API void qglTexCoord1f(float s);
+QGL_API void qglTexCoord2f(float s, float t);
+QGL_API void qglTexCoord3f(float s, float t, float r);
+QGL_API void qglTexCoord4f(float s, float t, float r, float q);
+QGL_API void qglTexCoord1d(double s);
+QGL_API void qglTexCoord2d(double s, double t);
+QGL_API void qglTexCoord3d(double s, double t, double r);
+QGL_API void qglTexCoord4d(double s, double t, double r, double q);
+QGL_API void qglTexCoord2fv(const float *v);
+QGL_API void qglTexCoord3fv(const float *v);
+QGL_API void qglTexCoord4fv(const float *v);
+QGL_API void qglTexCoord2dv(const double *v);
+QGL_API void qglMultiTexCoord2f(unsigned unit, float s, float t);
+QGL_API void qglMultiTexCoord4f(unsigned unit, float s, float t, float r, float q);
+QGL_API void qglMultiTexCoord2fv(unsigned unit, const float *v);
+QGL_API void qglMultiTexCoord4fv(unsigned unit, const float *v);
+
+QGL_API void qglSecondaryColor3f(float r, float g, float b);
+QGL_API void qglSecondaryColor3fv(const float *v);
+QGL_API void qglFogCoordf(float f);
+QGL_API void qglFogCoordfv(const float *f);
+QGL_API void qglEdgeFlag(unsigned char flag);
+QGL_API void qglEdgeFlagv(const unsigned char *flag);
+QGL_API void qglMaterialf(unsigned face, unsigned pname, float param);
+QGL_API void qglMaterialfv(unsigned face, unsigned pname, const float *params);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,231 @@
+/* quadgl-glbench: frame-time ratios of the GL layer against the driver's native split (OSMesa).
+ *
+ * Three targets of issue 4, each timed as the median of several frames (draw + glFinish) in
+ * one run: a full-screen non-affine quad at 1024^2 on the shader path; AUTO on a textured
+ * latitude/longitude sphere and a jittered colour mesh; and many tiny quads in immediate
+ * mode (1M vertices per frame). Native frames call the driver's glBegin/glVertex directly;
+ * ours call the qgl* twins. Usage: quadgl-glbench [frames] (default 9). */
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/osmesa.h>
+#include <math.h>
+#include <quadgl/quadgl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+enum { W = 1024, H = 1024 };
+
+typedef void (*frame_fn)(int native);
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median_ms(frame_fn f, int native, int frames)
+{
+    double t[64];
+    f(native); /* warm-up: shader compilation, buffer growth */
+    glFinish();
+    for (int i = 0; i < frames; i++) {
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glFinish();
+        double t0 = now();
+        f(native);
+        glFinish();
+        t[i] = (now() - t0) * 1e3;
+    }
+    qsort(t, (size_t)frames, sizeof t[0], cmp);
+    return t[frames / 2];
+}
+
+#define B(native) ((native) ? glBegin : qglBegin)
+#define E(native) ((native) ? glEnd : qglEnd)
+#define C4(native) ((native) ? glColor4f : qglColor4f)
+#define T2(native) ((native) ? glTexCoord2f : qglTexCoord2f)
+#define V3(native) ((native) ? glVertex3f : qglVertex3f)
+
+static void ortho(void)
+{
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+}
+
+static void perspective(void)
+{
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.6, 0.6, -0.6, 0.6, 1, 10);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    glTranslatef(0, 0, -2.8f);
+    glRotatef(-60, 1, 0, 0);
+}
+
+/* A full-screen quad whose colours are not affine (R, G, B, black corners). */
+static void fullscreen(int native)
+{
+    static const float p[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    static const float c[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}};
+    B(native)(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        C4(native)(c[i][0], c[i][1], c[i][2], 1);
+        V3(native)(p[i][0], p[i][1], 0);
+    }
+    E(native)();
+}
+
+static void sphere_vertex(int native, int i, int j, int nu, int nv)
+{
+    double th = 2 * M_PI * i / nu, ph = M_PI * j / nv - M_PI / 2;
+    T2(native)((float)i / nu * 4, (float)j / nv * 2);
+    V3(native)((float)(cos(ph) * cos(th)), (float)(cos(ph) * sin(th)), (float)sin(ph));
+}
+
+/* Textured latitude/longitude sphere, 48 x 24 quads. */
+static void sphere(int native)
+{
+    enum { NU = 48, NV = 24 };
+    glEnable(GL_TEXTURE_2D);
+    glEnable(GL_DEPTH_TEST);
+    B(native)(GL_QUADS);
+    for (int j = 0; j < NV; j++)
+        for (int i = 0; i < NU; i++) {
+            sphere_vertex(native, i, j, NU, NV);
+            sphere_vertex(native, i + 1, j, NU, NV);
+            sphere_vertex(native, i + 1, j + 1, NU, NV);
+            sphere_vertex(native, i, j + 1, NU, NV);
+        }
+    E(native)();
+    glDisable(GL_TEXTURE_2D);
+}
+
+static float hash(int i, int j, int k)
+{
+    unsigned h = (unsigned)i * 73856093u ^ (unsigned)j * 19349663u ^ (unsigned)k * 83492791u;
+    h = h * 2654435761u;
+    return (float)(h >> 8 & 0xffff) / 65535.0f;
+}
+
+/* A 64 x 64 height field with random vertex colours, drawn as quad strips. */
+static void mesh(int native)
+{
+    enum { N = 64 };
+    glEnable(GL_DEPTH_TEST);
+    for (int j = 0; j < N; j++) {
+        B(native)(GL_QUAD_STRIP);
+        for (int i = 0; i <= N; i++)
+            for (int k = 0; k < 2; k++) {
+                int jj = j + k;
+                C4(native)(hash(i, jj, 0), hash(i, jj, 1), hash(i, jj, 2), 1);
+                V3(native)(-1 + 2.0f * i / N, -1 + 2.0f * jj / N, 0.1f * sinf(i * 0.4f) * cosf(jj * 0.3f));
+            }
+        E(native)();
+    }
+}
+
+/* 250 000 quads of about 1.5 x 1.5 pixels: 1M vertices in one glBegin/glEnd. */
+static void tiny(int native)
+{
+    enum { NX = 500, NY = 500 };
+    float sx = 2.0f / NX, sy = 2.0f / NY, q = 0.75f;
+    B(native)(GL_QUADS);
+    for (int j = 0; j < NY; j++)
+        for (int i = 0; i < NX; i++) {
+            float x = -1 + i * sx, y = -1 + j * sy;
+            C4(native)(hash(i, j, 0), 0.5f, 0.2f, 1);
+            V3(native)(x, y, 0);
+            C4(native)(0.2f, hash(i, j, 1), 0.5f, 1);
+            V3(native)(x + q * sx, y, 0);
+            C4(native)(0.5f, 0.2f, hash(i, j, 2), 1);
+            V3(native)(x + q * sx, y + q * sy, 0);
+            C4(native)(1, 1, 1, 1);
+            V3(native)(x, y + q * sy, 0);
+        }
+    E(native)();
+}
+
+static void make_texture(void)
+{
+    static unsigned char tex[256][256][4];
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++) {
+            int on = ((x / 16) ^ (y / 16)) & 1;
+            tex[y][x][0] = (unsigned char)(on ? 230 : 40);
+            tex[y][x][1] = (unsigned char)(on ? 200 : 60);
+            tex[y][x][2] = (unsigned char)x;
+            tex[y][x][3] = 255;
+        }
+    GLuint id;
+    glGenTextures(1, &id);
+    glBindTexture(GL_TEXTURE_2D, id);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 256, 256, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+}
+
+static void report(const char *name, qgl_context *q, qgl_method method, frame_fn setup, frame_fn f, int frames,
+                   double target)
+{
+    setup(0);
+    qgl_gl_set_method(q, method);
+    double native = median_ms(f, 1, frames);
+    qgl_gl_reset_stats(q);
+    double ours = median_ms(f, 0, frames);
+    qgl_gl_stats_t st;
+    qgl_gl_stats(q, &st);
+    double per = (double)(frames + 1);
+    printf("%-34s native %8.2f ms  quadgl %8.2f ms  ratio %5.2f (target <= %.1f) %s | per frame: mvc %.0f split %.0f "
+           "subdiv %.0f draws %.0f\n",
+           name, native, ours, ours / native, target, ours / native <= target ? "met" : "MISSED", st.mvc / per,
+           st.split / per, st.subdiv / per, st.draws / per);
+}
+
+static void setup_ortho(int unused) { (void)unused, ortho(); }
+static void setup_persp(int unused) { (void)unused, perspective(); }
+
+int main(int argc, char **argv)
+{
+    int frames = argc > 1 ? atoi(argv[1]) : 9;
+    frames = frames < 1 ? 1 : frames > 64 ? 64 : frames;
+    static const int attr[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    OSMesaContext osm = OSMesaCreateContextAttribs(attr, NULL);
+    void *buf = malloc((size_t)W * H * 4);
+    if (!osm || !buf || !OSMesaMakeCurrent(osm, buf, GL_UNSIGNED_BYTE, W, H)) {
+        fprintf(stderr, "quadgl-glbench: no OSMesa compatibility context\n");
+        return 1;
+    }
+    qgl_gl_desc d = {.get_proc = (void *(*)(const char *))OSMesaGetProcAddress};
+    qgl_context *q = qgl_gl_create(&d);
+    if (!q) {
+        fprintf(stderr, "quadgl-glbench: qgl_gl_create failed\n");
+        return 1;
+    }
+    qgl_gl_make_current(q);
+    glViewport(0, 0, W, H);
+    make_texture();
+    printf("%s, %dx%d, median of %d frames, shader level %d\n", (const char *)glGetString(GL_RENDERER), W, H,
+           frames, qgl_gl_shader_level(q));
+    report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.5);
+    report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
+    report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
+    report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.3);
+    report("sphere 48x24 textured (mvc)", q, QGL_METHOD_MVC, setup_persp, sphere, frames, 99);
+    qgl_gl_destroy(q);
+    OSMesaDestroyContext(osm);
+    free(buf);
+    return 0;
+}

@@ -1,0 +1,240 @@
+/* context.c: the qgl_context's life cycle, options, counters and the per-thread current one.
+ *
+ * A context is created inside the application's current GL context. It resolves the GL entry
+ * points, reads what the driver offers (version, profile, geometry shaders, vertex array
+ * objects, the quads' provoking vertex rule), creates its own vertex array object and
+ * buffers, and compiles a first program to prove the shader path works; when that fails the
+ * context keeps working on the CPU fallback alone. Options come from the desc, then from the
+ * environment (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_internal.h"
+
+/* initial-exec: one load per immediate-mode call instead of a __tls_get_addr call. */
+__attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;
+
+qgl_context *qgl__current(void)
+{
+    return qgl__tls_current;
+}
+
+QGL_API void qgl_gl_make_current(qgl_context *ctx)
+{
+    qgl__tls_current = ctx;
+}
+
+QGL_API qgl_context *qgl_gl_current(void)
+{
+    return qgl__tls_current;
+}
+
+static qgl_method env_method(void)
+{
+    const char *s = getenv("QUADGL_METHOD");
+    if (!s)
+        return QGL_METHOD_AUTO;
+    if (!strcmp(s, "mvc"))
+        return QGL_METHOD_MVC;
+    if (!strcmp(s, "split"))
+        return QGL_METHOD_SPLIT;
+    if (!strcmp(s, "subdiv"))
+        return QGL_METHOD_SUBDIV;
+    return QGL_METHOD_AUTO;
+}
+
+static float env_float(const char *name, float def)
+{
+    const char *s = getenv(name);
+    char *end;
+    float v = s ? strtof(s, &end) : 0;
+    return s && end != s && v > 0 ? v : def;
+}
+
+static int has_extension(qgl_context *ctx, int major, const char *name)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    if (major >= 3 && gl->GetStringi) {
+        GLint n = 0;
+        gl->GetIntegerv(GL_NUM_EXTENSIONS, &n);
+        for (GLint i = 0; i < n; i++) {
+            const char *e = (const char *)gl->GetStringi(GL_EXTENSIONS, (GLuint)i);
+            if (e && !strcmp(e, name))
+                return 1;
+        }
+        return 0;
+    }
+    const char *all = (const char *)gl->GetString(GL_EXTENSIONS);
+    size_t len = strlen(name);
+    for (const char *p = all; p && (p = strstr(p, name)); p += len)
+        if ((p == all || p[-1] == ' ') && (p[len] == ' ' || p[len] == 0))
+            return 1;
+    return 0;
+}
+
+/* Our own vertex array object and buffers: drawing through them leaves the application's
+ * vertex array state alone (only the bindings need restoring). */
+static void create_objects(qgl_context *ctx)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    GLint vao = 0, vbo = 0;
+    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &vbo);
+    gl->GenVertexArrays(1, &ctx->vao);
+    gl->GenBuffers(1, &ctx->vbo);
+    gl->GenBuffers(1, &ctx->ibo);
+    gl->BindVertexArray(ctx->vao);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->ibo);
+    gl->BindVertexArray((GLuint)vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, (GLuint)vbo);
+}
+
+static void probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    const char *ver = (const char *)gl->GetString(GL_VERSION);
+    int major = 1, minor = 0;
+    if (ver)
+        sscanf(ver, "%d.%d", &major, &minor);
+    int v = major * 10 + minor;
+    ctx->version = v;
+    GLint profile = 0;
+    if (v >= 32)
+        gl->GetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    int compat = v < 32 || (profile & GL_CONTEXT_COMPATIBILITY_PROFILE_BIT);
+    ctx->has_vao = v >= 30 && gl->GenVertexArrays && gl->BindVertexArray && gl->GenBuffers &&
+                   gl->BufferData && gl->SecondaryColorPointer && gl->FogCoordPointer;
+    if (v >= 32) {
+        GLboolean follow = GL_FALSE;
+        gl->GetBooleanv(GL_QUADS_FOLLOW_PROVOKING_VERTEX_CONVENTION, &follow);
+        ctx->quads_follow_pv = follow;
+    }
+    ctx->has_arb_programs = has_extension(ctx, major, "GL_ARB_fragment_program") ||
+                            has_extension(ctx, major, "GL_ARB_vertex_program");
+    gl->GetIntegerv(GL_MAX_TEXTURE_UNITS, &ctx->max_units);
+    gl->GetIntegerv(GL_MAX_CLIP_PLANES, &ctx->max_clip_planes);
+    int cap = d->max_glsl ? d->max_glsl : 1000;
+    ctx->shader_level = (v >= 32 && compat && ctx->has_vao && gl->CreateShader && cap >= 150 &&
+                         !d->force_fallback) ? 150 : 0;
+}
+
+QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
+{
+    qgl_gl_desc d = desc ? *desc : (qgl_gl_desc){0};
+    qgl_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx)
+        return NULL;
+    if (!qgl__gl_load(&ctx->gl, d.get_proc) || !ctx->gl.GetString(GL_VERSION)) {
+        free(ctx);
+        return NULL;
+    }
+    ctx->method = d.method ? d.method : env_method();
+    ctx->tolerance_px = d.tolerance_px > 0 ? d.tolerance_px : env_float("QUADGL_TOLERANCE", 0.5f);
+    ctx->invisible_area_px = d.invisible_area_px > 0 ? d.invisible_area_px : 4.0f;
+    probe_driver(ctx, &d);
+    if (ctx->has_vao)
+        create_objects(ctx);
+    if (ctx->shader_level && !qgl__program(ctx, 0))
+        ctx->shader_level = 0;
+    return ctx;
+}
+
+QGL_API void qgl_gl_destroy(qgl_context *ctx)
+{
+    if (!ctx)
+        return;
+    if (qgl__tls_current == ctx)
+        qgl__tls_current = NULL;
+    qgl__programs_free(ctx);
+    if (ctx->has_vao) {
+        ctx->gl.DeleteVertexArrays(1, &ctx->vao);
+        ctx->gl.DeleteBuffers(1, &ctx->vbo);
+        ctx->gl.DeleteBuffers(1, &ctx->ibo);
+    }
+    qgl__verts_free(&ctx->cap);
+    qgl__verts_free(&ctx->sub);
+    free(ctx->clip);
+    free(ctx->path);
+    free(ctx->idx);
+    free(ctx);
+}
+
+QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method)
+{
+    if (ctx && method >= QGL_METHOD_AUTO && method <= QGL_METHOD_SUBDIV)
+        ctx->method = method;
+}
+
+QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx)
+{
+    return ctx ? ctx->method : QGL_METHOD_AUTO;
+}
+
+QGL_API int qgl_gl_shader_level(const qgl_context *ctx)
+{
+    return ctx ? ctx->shader_level : 0;
+}
+
+QGL_API void qgl_gl_stats(const qgl_context *ctx, qgl_gl_stats_t *out)
+{
+    if (ctx && out)
+        *out = ctx->stats;
+}
+
+QGL_API void qgl_gl_reset_stats(qgl_context *ctx)
+{
+    if (ctx)
+        memset(&ctx->stats, 0, sizeof ctx->stats);
+}
+
+/* ---- vertex arrays ------------------------------------------------------------------------ */
+
+static int grow(void **p, size_t n, size_t elem)
+{
+    void *q = realloc(*p, n * elem);
+    if (!q)
+        return 0;
+    *p = q;
+    return 1;
+}
+
+/* Room for n vertices of position and every attribute in need. When the capacity grows every
+ * allocated array grows with it, so arrays stay interchangeable. Does not touch v->mask. */
+int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned need)
+{
+    if (n <= v->cap && (need & ~v->alloc) == 0 && v->pos)
+        return 1;
+    size_t cap = v->cap;
+    if (n > cap)
+        cap = n > 2 * cap ? n : 2 * cap;
+    if (cap < 256)
+        cap = 256;
+    unsigned all = need | v->alloc;
+    int ok = grow((void **)&v->pos, cap, 4 * sizeof(float));
+    ok = ok && (!(all & QGL__A_COLOR) || grow((void **)&v->col, cap, 4 * sizeof(float)));
+    ok = ok && (!(all & QGL__A_NORMAL) || grow((void **)&v->nrm, cap, 3 * sizeof(float)));
+    ok = ok && (!(all & QGL__A_COLOR2) || grow((void **)&v->col2, cap, 3 * sizeof(float)));
+    ok = ok && (!(all & QGL__A_FOG) || grow((void **)&v->fog, cap, sizeof(float)));
+    ok = ok && (!(all & QGL__A_EDGE) || grow((void **)&v->edge, cap, 1));
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        ok = ok && (!(all & (QGL__A_TEX0 << u)) || grow((void **)&v->tex[u], cap, 4 * sizeof(float)));
+    if (!ok)
+        return 0;
+    v->cap = cap;
+    v->alloc = all;
+    return 1;
+}
+
+void qgl__verts_free(qgl__verts *v)
+{
+    free(v->pos);
+    free(v->col);
+    free(v->nrm);
+    free(v->col2);
+    free(v->fog);
+    free(v->edge);
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        free(v->tex[u]);
+    memset(v, 0, sizeof *v);
+}

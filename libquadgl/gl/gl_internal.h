@@ -1,0 +1,260 @@
+/* gl_internal.h: the GL layer's private types: dispatch table, captured vertices, context.
+ *
+ * Every GL entry point the layer uses is a member of struct qgl__gl, named after the GL
+ * function without its prefix, filled once per context from a resolver. The list is one
+ * X-macro (QGL__GL_FUNCS) so the table, its loader and the names cannot drift apart. Code in
+ * this directory never names a gl* symbol: a library that exports those names itself (the
+ * preload library) can drive this layer without recursing into itself. GL headers are
+ * included for types and enums only. */
+#ifndef QGL_GL_INTERNAL_H
+#define QGL_GL_INTERNAL_H
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <quadgl/quadgl.h>
+
+/* X(return type, name without "gl", parameter list) */
+#define QGL__GL_FUNCS(X) \
+    X(void, Begin, (GLenum)) \
+    X(void, End, (void)) \
+    X(void, Vertex2f, (GLfloat, GLfloat)) \
+    X(void, Vertex2d, (GLdouble, GLdouble)) \
+    X(void, Vertex2i, (GLint, GLint)) \
+    X(void, Vertex2s, (GLshort, GLshort)) \
+    X(void, Vertex3f, (GLfloat, GLfloat, GLfloat)) \
+    X(void, Vertex3d, (GLdouble, GLdouble, GLdouble)) \
+    X(void, Vertex3i, (GLint, GLint, GLint)) \
+    X(void, Vertex3s, (GLshort, GLshort, GLshort)) \
+    X(void, Vertex4f, (GLfloat, GLfloat, GLfloat, GLfloat)) \
+    X(void, Vertex4d, (GLdouble, GLdouble, GLdouble, GLdouble)) \
+    X(void, Vertex4i, (GLint, GLint, GLint, GLint)) \
+    X(void, Vertex4s, (GLshort, GLshort, GLshort, GLshort)) \
+    X(void, Vertex2fv, (const GLfloat *)) \
+    X(void, Vertex2dv, (const GLdouble *)) \
+    X(void, Vertex2iv, (const GLint *)) \
+    X(void, Vertex2sv, (const GLshort *)) \
+    X(void, Vertex3fv, (const GLfloat *)) \
+    X(void, Vertex3dv, (const GLdouble *)) \
+    X(void, Vertex3iv, (const GLint *)) \
+    X(void, Vertex3sv, (const GLshort *)) \
+    X(void, Vertex4fv, (const GLfloat *)) \
+    X(void, Vertex4dv, (const GLdouble *)) \
+    X(void, Vertex4iv, (const GLint *)) \
+    X(void, Vertex4sv, (const GLshort *)) \
+    X(void, Color3f, (GLfloat, GLfloat, GLfloat)) \
+    X(void, Color3d, (GLdouble, GLdouble, GLdouble)) \
+    X(void, Color3ub, (GLubyte, GLubyte, GLubyte)) \
+    X(void, Color4f, (GLfloat, GLfloat, GLfloat, GLfloat)) \
+    X(void, Color4d, (GLdouble, GLdouble, GLdouble, GLdouble)) \
+    X(void, Color4ub, (GLubyte, GLubyte, GLubyte, GLubyte)) \
+    X(void, Color3fv, (const GLfloat *)) \
+    X(void, Color3dv, (const GLdouble *)) \
+    X(void, Color3ubv, (const GLubyte *)) \
+    X(void, Color4fv, (const GLfloat *)) \
+    X(void, Color4dv, (const GLdouble *)) \
+    X(void, Color4ubv, (const GLubyte *)) \
+    X(void, Normal3f, (GLfloat, GLfloat, GLfloat)) \
+    X(void, Normal3d, (GLdouble, GLdouble, GLdouble)) \
+    X(void, Normal3fv, (const GLfloat *)) \
+    X(void, Normal3dv, (const GLdouble *)) \
+    X(void, TexCoord1f, (GLfloat)) \
+    X(void, TexCoord2f, (GLfloat, GLfloat)) \
+    X(void, TexCoord3f, (GLfloat, GLfloat, GLfloat)) \
+    X(void, TexCoord4f, (GLfloat, GLfloat, GLfloat, GLfloat)) \
+    X(void, TexCoord1d, (GLdouble)) \
+    X(void, TexCoord2d, (GLdouble, GLdouble)) \
+    X(void, TexCoord3d, (GLdouble, GLdouble, GLdouble)) \
+    X(void, TexCoord4d, (GLdouble, GLdouble, GLdouble, GLdouble)) \
+    X(void, TexCoord2fv, (const GLfloat *)) \
+    X(void, TexCoord3fv, (const GLfloat *)) \
+    X(void, TexCoord4fv, (const GLfloat *)) \
+    X(void, TexCoord2dv, (const GLdouble *)) \
+    X(void, MultiTexCoord2f, (GLenum, GLfloat, GLfloat)) \
+    X(void, MultiTexCoord4f, (GLenum, GLfloat, GLfloat, GLfloat, GLfloat)) \
+    X(void, MultiTexCoord2fv, (GLenum, const GLfloat *)) \
+    X(void, MultiTexCoord4fv, (GLenum, const GLfloat *)) \
+    X(void, SecondaryColor3f, (GLfloat, GLfloat, GLfloat)) \
+    X(void, SecondaryColor3fv, (const GLfloat *)) \
+    X(void, FogCoordf, (GLfloat)) \
+    X(void, FogCoordfv, (const GLfloat *)) \
+    X(void, EdgeFlag, (GLboolean)) \
+    X(void, EdgeFlagv, (const GLboolean *)) \
+    X(void, Materialf, (GLenum, GLenum, GLfloat)) \
+    X(void, Materialfv, (GLenum, GLenum, const GLfloat *)) \
+    X(const GLubyte *, GetString, (GLenum)) \
+    X(void, GetIntegerv, (GLenum, GLint *)) \
+    X(void, GetFloatv, (GLenum, GLfloat *)) \
+    X(void, GetDoublev, (GLenum, GLdouble *)) \
+    X(void, GetBooleanv, (GLenum, GLboolean *)) \
+    X(GLboolean, IsEnabled, (GLenum)) \
+    X(void, GetTexEnviv, (GLenum, GLenum, GLint *)) \
+    X(void, GetTexLevelParameteriv, (GLenum, GLint, GLenum, GLint *)) \
+    X(GLenum, GetError, (void)) \
+    X(void, ActiveTexture, (GLenum)) \
+    X(void, ClientActiveTexture, (GLenum)) \
+    X(void, VertexPointer, (GLint, GLenum, GLsizei, const void *)) \
+    X(void, ColorPointer, (GLint, GLenum, GLsizei, const void *)) \
+    X(void, NormalPointer, (GLenum, GLsizei, const void *)) \
+    X(void, TexCoordPointer, (GLint, GLenum, GLsizei, const void *)) \
+    X(void, EdgeFlagPointer, (GLsizei, const void *)) \
+    X(void, EnableClientState, (GLenum)) \
+    X(void, DisableClientState, (GLenum)) \
+    X(void, DrawArrays, (GLenum, GLint, GLsizei)) \
+    X(void, DrawElements, (GLenum, GLsizei, GLenum, const void *))
+
+/* Entry points from GL 1.4 - 3.2; absent on older contexts (NULL), which the layer checks. */
+#define QGL__GL_FUNCS_OPT(X) \
+    X(void, SecondaryColorPointer, (GLint, GLenum, GLsizei, const void *)) \
+    X(void, FogCoordPointer, (GLenum, GLsizei, const void *)) \
+    X(const GLubyte *, GetStringi, (GLenum, GLuint)) \
+    X(void, GenBuffers, (GLsizei, GLuint *)) \
+    X(void, DeleteBuffers, (GLsizei, const GLuint *)) \
+    X(void, BindBuffer, (GLenum, GLuint)) \
+    X(void, BufferData, (GLenum, GLsizeiptr, const void *, GLenum)) \
+    X(void, BufferSubData, (GLenum, GLintptr, GLsizeiptr, const void *)) \
+    X(void, GenVertexArrays, (GLsizei, GLuint *)) \
+    X(void, DeleteVertexArrays, (GLsizei, const GLuint *)) \
+    X(void, BindVertexArray, (GLuint)) \
+    X(GLuint, CreateShader, (GLenum)) \
+    X(void, ShaderSource, (GLuint, GLsizei, const GLchar *const *, const GLint *)) \
+    X(void, CompileShader, (GLuint)) \
+    X(void, GetShaderiv, (GLuint, GLenum, GLint *)) \
+    X(void, GetShaderInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *)) \
+    X(void, DeleteShader, (GLuint)) \
+    X(GLuint, CreateProgram, (void)) \
+    X(void, AttachShader, (GLuint, GLuint)) \
+    X(void, LinkProgram, (GLuint)) \
+    X(void, GetProgramiv, (GLuint, GLenum, GLint *)) \
+    X(void, GetProgramInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *)) \
+    X(void, DeleteProgram, (GLuint)) \
+    X(void, UseProgram, (GLuint)) \
+    X(GLint, GetUniformLocation, (GLuint, const GLchar *)) \
+    X(void, Uniform1i, (GLint, GLint))
+
+#define QGL__MEMBER(ret, name, params) ret (*name) params;
+struct qgl__gl {
+    QGL__GL_FUNCS(QGL__MEMBER)
+    QGL__GL_FUNCS_OPT(QGL__MEMBER)
+};
+#undef QGL__MEMBER
+
+/* Fill the table; returns 0 when a required entry point is missing. */
+int qgl__gl_load(struct qgl__gl *gl, void *(*get_proc)(const char *));
+
+/* ---- captured vertices: one array per attribute (structure of arrays) ------------------- */
+
+enum {
+    QGL__A_COLOR = 1 << 0,
+    QGL__A_NORMAL = 1 << 1,
+    QGL__A_COLOR2 = 1 << 2,
+    QGL__A_FOG = 1 << 3,
+    QGL__A_EDGE = 1 << 4,
+    QGL__A_TEX0 = 1 << 5 /* unit u is QGL__A_TEX0 << u */
+};
+
+typedef struct qgl__verts {
+    size_t n, cap;
+    unsigned mask;            /* attributes present (QGL__A_*) */
+    unsigned alloc;           /* arrays allocated */
+    float *pos;               /* 4 per vertex, object coordinates */
+    float *col;               /* 4 */
+    float *nrm;               /* 3 */
+    float *col2;              /* 3 */
+    float *fog;               /* 1 */
+    unsigned char *edge;      /* 1 */
+    float *tex[QGL_MAX_TEXUNITS]; /* 4 */
+} qgl__verts;
+
+int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned mask);
+void qgl__verts_free(qgl__verts *v);
+
+/* ---- GL state the paths need, queried at each draw --------------------------------------- */
+
+typedef struct qgl__state {
+    GLint program, render_mode, polygon_mode[2], shade_model, viewport[4], active_texture;
+    double mvp[16];           /* projection * modelview, column-major */
+    double texmat[16];        /* texture matrix of unit 0 */
+    int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
+    int tex_replace;          /* env mode REPLACE (else MODULATE) */
+    int tex_no_alpha;         /* the texture's base format has no alpha (REPLACE keeps Af) */
+    int modelled;             /* the shader path reproduces every enabled feature */
+    int lit_or_fog;           /* lighting, fog, texgen... : per-vertex work we cannot predict */
+    int polygon_offset;       /* GL_POLYGON_OFFSET_FILL (needs rasterizer depth) */
+} qgl__state;
+
+/* ---- programs ------------------------------------------------------------------------------ */
+
+enum {
+    QGL__K_COLOR = 1 << 0,    /* per-vertex colour (else the current colour, constant) */
+    QGL__K_FLAT = 1 << 1,
+    QGL__K_TEX = 1 << 2,
+    QGL__K_REPLACE = 1 << 3,
+    QGL__K_NOALPHA = 1 << 4,
+    QGL__K_DEPTH = 1 << 5,    /* non-planar: write gl_FragDepth from the screen weights */
+    QGL__K_DISCARD = 1 << 6,  /* corners behind the eye: cover is the clipped split, kill outside */
+    QGL__K_CORNER_SHIFT = 7   /* 2 bits: the provoking corner */
+};
+
+#define QGL__MAX_PROGRAMS 64
+
+struct qgl_context {
+    struct qgl__gl gl;
+    qgl_method method;
+    float tolerance_px, invisible_area_px;
+    int version;              /* GL version * 10 (e.g. 45) */
+    int shader_level;         /* 0, 150 */
+    int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
+    int quads_follow_pv;
+    int has_arb_programs;
+    GLint max_units, max_clip_planes;
+    qgl_gl_stats_t stats;
+
+    /* immediate capture */
+    int in_begin;             /* 0 outside, 1 capturing quads, 2 forwarding another primitive */
+    GLenum mode;
+    qgl__verts cap;
+    unsigned given;           /* attributes given since qglBegin */
+    float cur_col[4], cur_nrm[3], cur_col2[3], cur_fog, cur_tex[QGL_MAX_TEXUNITS][4];
+    unsigned char cur_edge;
+
+    /* drawing */
+    GLuint vao, vbo, ibo;
+    size_t vbo_size;          /* bytes allocated in vbo: reused while large enough */
+    qgl__verts sub;           /* fallback output */
+    double *clip;             /* 4 per vertex */
+    unsigned char *path;      /* per quad */
+    uint32_t *idx;
+    size_t clip_cap, path_cap, idx_cap;
+    struct { unsigned key; GLuint prog; } programs[QGL__MAX_PROGRAMS];
+    int nprograms;
+};
+
+/* Paths a quad can take. */
+enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3 };
+/* Bits on top of QGL__P_MVC in the per-quad path byte. */
+enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5 };
+
+/* draw.c */
+int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
+void qgl__query_state(qgl_context *ctx, qgl__state *st);
+/* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */
+size_t qgl__nquads(qgl_topology topo, size_t n);
+size_t qgl__corner(qgl_topology topo, size_t q, int c);
+int qgl__flat_corner(qgl_context *ctx, qgl_topology topo);
+
+/* shader.c */
+GLuint qgl__program(qgl_context *ctx, unsigned key);
+void qgl__programs_free(qgl_context *ctx);
+
+/* fallback.c: append the subdivision of quad q of v to out (same attributes as v). */
+int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
+                   size_t q, qgl__verts *out);
+
+/* Per-thread current context (read directly on the immediate-mode hot path). */
+extern __attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;
+qgl_context *qgl__current(void);
+
+#endif

@@ -1,0 +1,266 @@
+/* sw_mvc.c: the fast mean value rasterizer (method "mvc"): float, spans of 8 pixels.
+ *
+ * H&T sec. 4.2 in homogeneous form. With s~_i = (hx_i - X hw_i, hy_i - Y hw_i) (window-
+ * homogeneous corners, so no division by w and corners behind the eye need no case), the
+ * cross products A_i = s~_i x s~_{i+1} are linear in the pixel position and the dot products
+ * D_i = s~_i . s~_{i+1} and squared lengths rho_i^2 = |s~_i|^2 are quadratic. Each row is cut
+ * into spans; at a span's first pixel the three families are evaluated exactly (double) and
+ * carried to the span's pixel k by their finite differences: A + k dA, D + k (dD + k d2D),
+ * rho^2 likewise (the closed form of the forward-difference recurrence, which lets the 8
+ * pixels of a span run as SIMD lanes instead of a serial chain, and keeps the rounding of the
+ * recurrence bounded by the span length rather than the row's). Per pixel that leaves 4
+ * square roots and 10 divisions: t_i = tan(alpha_i / 2) = A / (P + D) when D > 0, else
+ * (P - D) / A (P = rho_i rho_{i+1}; the form whose denominator does not cancel), nu_i =
+ * (t_{i-1} + t_i) / rho_i (which is H&T's mu_i / w_i), then attributes sum nu a / sum nu and
+ * depth sum nu z / sum nu w. Coverage is eq. (12) on the double edge functions shared with
+ * every other method. A pixel whose float weights are not finite (its centre on a corner or
+ * on an edge line) is handed to qgl_weightsf, which knows the limits. The kernel is compiled
+ * for AVX2 and for the baseline and picked at load time (target_clones). */
+#include "sw_internal.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("vect-cost-model=dynamic")
+#endif
+
+#define SPAN 8
+
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define QGL__CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+#ifndef QGL__CLONES
+#define QGL__CLONES
+#endif
+
+typedef struct span_coef {
+    float A0[4], A1[4];         /* A_i = A0 + k A1 */
+    float D0[4], D1[4], D2[4];  /* D_i = D0 + k (D1 + k D2) */
+    float R0[4], R1[4], R2[4];  /* rho_i^2 = R0 + k (R1 + k R2) */
+} span_coef;
+
+typedef struct span_out {
+    float nu[4][SPAN];
+    float inv[SPAN];    /* 1 / sum nu */
+    float zndc[SPAN];
+    float attr[QGL_SW_MAX_ATTR][SPAN];
+} span_out;
+
+static const float lane_k[SPAN] = {0, 1, 2, 3, 4, 5, 6, 7};
+
+/* The exact values and differences at the span's first pixel centre (X0, Y). */
+static void span_setup(const qgl__quad *q, double X0, double Y, span_coef *s)
+{
+    double sx[4], sy[4], w[4];
+    for (int i = 0; i < 4; i++) {
+        w[i] = q->h[i][2];
+        sx[i] = q->h[i][0] - X0 * w[i];
+        sy[i] = q->h[i][1] - Y * w[i];
+    }
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        s->A0[i] = (float)(sx[i] * sy[j] - sy[i] * sx[j]);
+        s->A1[i] = (float)(sy[i] * w[j] - w[i] * sy[j]);
+        s->D0[i] = (float)(sx[i] * sx[j] + sy[i] * sy[j]);
+        s->D1[i] = (float)(-(w[i] * sx[j] + w[j] * sx[i]));
+        s->D2[i] = (float)(w[i] * w[j]);
+        s->R0[i] = (float)(sx[i] * sx[i] + sy[i] * sy[i]);
+        s->R1[i] = (float)(-2 * w[i] * sx[i]);
+        s->R2[i] = (float)(w[i] * w[i]);
+    }
+}
+
+/* m ? a : b for a mask m of all ones or all zeros, by bits: a float ?: with a comparison
+ * counts as control flow that may trap, which stops the vectorizer under IEEE semantics. */
+static inline float select_bits(int32_t m, float a, float b)
+{
+    uint32_t ua, ub;
+    memcpy(&ua, &a, sizeof ua);
+    memcpy(&ub, &b, sizeof ub);
+    uint32_t r = (ua & (uint32_t)m) | (ub & ~(uint32_t)m);
+    float f;
+    memcpy(&f, &r, sizeof f);
+    return f;
+}
+
+/* Square roots of a span's lanes in place. sqrtf sets errno, which keeps the compiler from
+ * vectorizing it under the project's flags; the SSE2 instruction does not. */
+static inline void lanes_sqrt(float v[SPAN])
+{
+#if defined(__SSE2__)
+    for (int k = 0; k < SPAN; k += 4)
+        _mm_storeu_ps(v + k, _mm_sqrt_ps(_mm_loadu_ps(v + k)));
+#else
+    for (int k = 0; k < SPAN; k++)
+        v[k] = sqrtf(v[k]);
+#endif
+}
+
+/* The weights of the span's pixels: nu, 1 / sum nu, NDC depth and the attributes. */
+QGL__CLONES
+static void span_weights(const span_coef *s, const float (*corner_attr)[QGL_SW_MAX_ATTR], int nattr,
+                         const float z[4], const float w[4], span_out *o)
+{
+    float r[4][SPAN], t[4][SPAN];
+    for (int i = 0; i < 4; i++) {
+        for (int k = 0; k < SPAN; k++) {
+            float R = s->R0[i] + lane_k[k] * (s->R1[i] + lane_k[k] * s->R2[i]);
+            r[i][k] = R > 0 ? R : 0;
+        }
+        lanes_sqrt(r[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        for (int k = 0; k < SPAN; k++) {
+            float A = s->A0[i] + lane_k[k] * s->A1[i];
+            float D = s->D0[i] + lane_k[k] * (s->D1[i] + lane_k[k] * s->D2[i]);
+            float P = r[i][k] * r[j][k];
+            float diff = P - D, sum = P + D;
+            int32_t pos = -(int32_t)(D > 0);
+            float num = select_bits(pos, A, diff);
+            float den = select_bits(pos, sum, A);
+            t[i][k] = num / den;
+        }
+    }
+    for (int i = 0; i < 4; i++) {
+        int h = (i + 3) & 3;
+        for (int k = 0; k < SPAN; k++)
+            o->nu[i][k] = (t[h][k] + t[i][k]) / r[i][k];
+    }
+    for (int k = 0; k < SPAN; k++) {
+        float n0 = o->nu[0][k], n1 = o->nu[1][k], n2 = o->nu[2][k], n3 = o->nu[3][k];
+        o->inv[k] = 1.0f / ((n0 + n1) + (n2 + n3));
+        o->zndc[k] = ((n0 * z[0] + n1 * z[1]) + (n2 * z[2] + n3 * z[3])) /
+                     ((n0 * w[0] + n1 * w[1]) + (n2 * w[2] + n3 * w[3]));
+    }
+    for (int a = 0; a < nattr; a++) {
+        float a0 = corner_attr[0][a], a1 = corner_attr[1][a], a2 = corner_attr[2][a], a3 = corner_attr[3][a];
+        for (int k = 0; k < SPAN; k++)
+            o->attr[a][k] = ((o->nu[0][k] * a0 + o->nu[1][k] * a1) + (o->nu[2][k] * a2 + o->nu[3][k] * a3)) *
+                            o->inv[k];
+    }
+}
+
+/* Eq. (12) for the span's lanes; facing[k] = +1, -1 or 0. Returns the number covered. */
+static int span_cover(const qgl__quad *q, double X0, double Y, int n, signed char facing[SPAN])
+{
+    unsigned char pos[QGL__NEDGE][SPAN], neg[QGL__NEDGE][SPAN];
+    for (int e = 0; e < QGL__NEDGE; e++) {
+        const qgl__edge *ed = &q->e[e];
+        double a = ed->a, by = ed->b * Y, c = ed->c;
+        unsigned char deg = (unsigned char)ed->degenerate, t1 = (unsigned char)ed->tie[1],
+                      t0 = (unsigned char)ed->tie[0];
+        for (int k = 0; k < SPAN; k++) {
+            double v = (a * (X0 + k) + by) + c;
+            pos[e][k] = deg | (v > 0) | ((v == 0) & t1);
+            neg[e][k] = deg | (v < 0) | ((v == 0) & t0);
+        }
+    }
+    const unsigned char(*p1)[SPAN] = q->f012 > 0 ? pos : neg;
+    const unsigned char(*p2)[SPAN] = q->f023 > 0 ? pos : neg, (*m2)[SPAN] = q->f023 > 0 ? neg : pos;
+    unsigned char on1 = q->f012 != 0, on2 = q->f023 != 0;
+    int count = 0;
+    for (int k = 0; k < SPAN; k++) {
+        unsigned char c1 = on1 & p1[QGL__E20][k] & p1[QGL__E01][k] & p1[QGL__E12][k] &
+                           (p1[QGL__E23][k] | p1[QGL__E30][k]);
+        unsigned char c2 = on2 & m2[QGL__E20][k] & p2[QGL__E23][k] & p2[QGL__E30][k] &
+                           (p2[QGL__E01][k] | p2[QGL__E12][k]);
+        facing[k] = (signed char)(k >= n ? 0 : c1 ? q->f012 : c2 ? q->f023 : 0);
+        count += facing[k] != 0;
+    }
+    return count;
+}
+
+/* Clear the culled lanes; returns how many are left. */
+static int uncull(const qgl__ctx *c, signed char facing[SPAN])
+{
+    int left = 0;
+    for (int k = 0; k < SPAN; k++) {
+        if (facing[k] && qgl__culled(c, facing[k]))
+            facing[k] = 0;
+        left += facing[k] != 0;
+    }
+    return left;
+}
+
+/* A lane whose float weights came out non-finite: qgl_weightsf's limits instead. */
+static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const float clipf[4][4], double X, double Y,
+                         float *attr, double *zndc)
+{
+    float persp[4], screen[4];
+    int r = qgl_weightsf(clipf, (float)qgl__to_ndc(X, c->fb->width), (float)qgl__to_ndc(Y, c->fb->height), persp,
+                         screen);
+    if (r == QGL_NONFINITE)
+        return 0;
+    double zs = 0, ws = 0;
+    for (int i = 0; i < 4; i++) {
+        zs += persp[i] * q->clip[i][2];
+        ws += persp[i] * q->clip[i][3];
+    }
+    *zndc = zs / ws;
+    for (int a = 0; a < q->nattr; a++) {
+        float v = 0;
+        for (int i = 0; i < 4; i++)
+            v += persp[i] * q->attr[i * q->nattr + a];
+        attr[a] = v;
+    }
+    return 1;
+}
+
+void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
+{
+    float corner_attr[4][QGL_SW_MAX_ATTR], z[4], w[4], clipf[4][4], attr[QGL_SW_MAX_ATTR];
+    int nattr = q->nattr;
+    for (int i = 0; i < 4; i++) {
+        for (int a = 0; a < nattr; a++)
+            corner_attr[i][a] = q->attr[i * nattr + a];
+        z[i] = (float)q->clip[i][2];
+        w[i] = (float)q->clip[i][3];
+        for (int k = 0; k < 4; k++)
+            clipf[i][k] = (float)q->clip[i][k];
+    }
+    span_coef s;
+    span_out o;
+    signed char facing[SPAN];
+    if (q->convex && qgl__culled(c, q->convex))
+        return;
+    for (int y = q->y0; y <= q->y1; y++) {
+        double Y = y + 0.5;
+        int x0, x1;
+        if (!qgl__row_range(q, Y, &x0, &x1))
+            continue;
+        int xa = 1, xb = 0;
+        qgl__row_inner(q, Y, x0, x1, &xa, &xb);
+        for (int xs = x0; xs <= x1; xs += SPAN) {
+            int n = x1 - xs + 1 < SPAN ? x1 - xs + 1 : SPAN;
+            double X0 = xs + 0.5;
+            if (xs >= xa && xs + n - 1 <= xb) {
+                for (int k = 0; k < SPAN; k++)
+                    facing[k] = (signed char)(k < n ? q->convex : 0);
+            } else if (!span_cover(q, X0, Y, n, facing) || !uncull(c, facing)) {
+                continue;
+            }
+            span_setup(q, X0, Y, &s);
+            span_weights(&s, (const float(*)[QGL_SW_MAX_ATTR])corner_attr, nattr, z, w, &o);
+            for (int k = 0; k < n; k++) {
+                if (!facing[k])
+                    continue;
+                double zndc = o.zndc[k];
+                if (isfinite(o.inv[k]) && isfinite(o.zndc[k]) && o.inv[k] != 0) {
+                    for (int a = 0; a < nattr; a++)
+                        attr[a] = o.attr[a][k];
+                } else if (!lane_fallback(c, q, (const float(*)[4])clipf, X0 + k, Y, attr, &zndc)) {
+                    continue;
+                }
+                qgl__fragment(c, xs + k, y, zndc, facing[k], attr);
+            }
+        }
+    }
+}
