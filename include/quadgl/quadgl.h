@@ -140,8 +140,10 @@ QGL_API void qgl_mesh_free(qgl_mesh *m);
 
 /* Bailey's SuperQuad: bilinear n x n subdivision of a quad whose corners are stride doubles
  * each (every component interpolated bilinearly, corners in GL order at (s,t) = (0,0),
- * (1,0), (1,1), (0,1)), appended to out as 2 n^2 triangles: cells row by row in t, then in
- * s, each as (0,1,2),(0,2,3) (the quad's winding). Points on an edge depend only on that
+ * (1,0), (1,1), (0,1)), appended to out as 4 n^2 triangles: cells row by row in t, then in
+ * s, each as four triangles (0,1,m),(1,2,m),(2,3,m),(3,0,m) around its centre m (the quad's
+ * winding; no diagonal is preferred, so rotating the corner order leaves the triangles the
+ * same up to rounding, unlike Bailey's two triangles per cell). Points on an edge depend only on that
  * edge's two corners, bitwise, so neighbouring quads stay watertight. Returns 0, or -1 on
  * bad arguments or allocation failure (out's triangles unchanged). */
 QGL_API int qgl_subdiv_bilinear(const double *quad, int stride, int n, qgl_mesh *out);

@@ -67,6 +67,21 @@ static void push_cell(qgl_mesh *m, const double *c0, const double *c1, const dou
     mesh_push(m, c0, c2, c3);
 }
 
+/* A cell as four triangles around its centre: no diagonal is preferred, so the result does
+ * not depend on which corner the quad starts at. The centre is the mean of the corners (the
+ * bilinear value there), summed in opposite pairs so that every rotation of the corner order
+ * gives the same bits. */
+static void push_cell_centred(qgl_mesh *m, const double *c0, const double *c1, const double *c2, const double *c3)
+{
+    double mid[4096];
+    for (int k = 0; k < m->stride; k++)
+        mid[k] = 0.25 * ((c0[k] + c2[k]) + (c1[k] + c3[k]));
+    mesh_push(m, c0, c1, mid);
+    mesh_push(m, c1, c2, mid);
+    mesh_push(m, c2, c3, mid);
+    mesh_push(m, c3, c0, mid);
+}
+
 /* a + (b - a) i/n, evaluated from the nearer end so that lerp(a,b,i) == lerp(b,a,n-i) bitwise. */
 static double lerp_sym(double a, double b, int i, int n)
 {
@@ -81,7 +96,7 @@ QGL_API int qgl_subdiv_bilinear(const double *quad, int stride, int n, qgl_mesh 
 {
     if (!quad || !out || stride < 1 || stride > 4096 || n < 1 || n > 4096)
         return -1;
-    if (mesh_reserve(out, stride, 2L * n * n) < 0)
+    if (mesh_reserve(out, stride, 4L * n * n) < 0)
         return -1;
     double *grid = malloc((size_t)(n + 1) * (size_t)(n + 1) * (size_t)stride * sizeof *grid);
     if (!grid)
@@ -97,7 +112,7 @@ QGL_API int qgl_subdiv_bilinear(const double *quad, int stride, int n, qgl_mesh 
 #define G(i, j) (grid + ((size_t)(j) * (n + 1) + (i)) * stride)
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++)
-            push_cell(out, G(i, j), G(i + 1, j), G(i + 1, j + 1), G(i, j + 1));
+            push_cell_centred(out, G(i, j), G(i + 1, j), G(i + 1, j + 1), G(i, j + 1));
 #undef G
     free(grid);
     return 0;

@@ -76,16 +76,17 @@ static void check_bilinear(void)
         int n = ns[a];
         qgl_mesh m = {0};
         CHECK(qgl_subdiv_bilinear(superquad, 6, n, &m) == 0, "bilinear n=%d failed", n);
-        CHECK(m.ntri == 2 * n * n && m.stride == 6, "n=%d: %d triangles", n, m.ntri);
+        CHECK(m.ntri == 4 * n * n && m.stride == 6, "n=%d: %d triangles", n, m.ntri);
         double maxerr = 0;
-        /* documented order: cells row by row (t), then along s; cell (i,j) = (0,1,2),(0,2,3) */
+        /* documented order: cells row by row (t), then along s; cell (i,j) = four triangles
+         * (0,1,m),(1,2,m),(2,3,m),(3,0,m) around its centre m */
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
-                const double st[4][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
-                const int idx[2][3] = {{0, 1, 2}, {0, 2, 3}};
-                for (int h = 0; h < 2; h++)
+                const double st[5][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}, {i + 0.5, j + 0.5}};
+                const int idx[4][3] = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+                for (int h = 0; h < 4; h++)
                     for (int c = 0; c < 3; c++) {
-                        const double *v = vert(&m, 2 * (j * n + i) + h, c);
+                        const double *v = vert(&m, 4 * (j * n + i) + h, c);
                         for (int k = 0; k < 6; k++) {
                             double ref = bilinear(superquad, 6, k, st[idx[h][c]][0] / n, st[idx[h][c]][1] / n);
                             maxerr = fmax(maxerr, fabs(v[k] - ref));
@@ -120,10 +121,38 @@ static void check_shared_edge(void)
                 memcpy(qr + 3 * i, qb + 3 * ((i + rot) & 3), 3 * sizeof(double));
             qgl_mesh m = {0};
             CHECK(qgl_subdiv_bilinear(qa, 3, n, &m) == 0 && qgl_subdiv_bilinear(qr, 3, n, &m) == 0, "append");
-            CHECK(m.ntri == 4 * n * n, "two quads: %d triangles", m.ntri);
+            CHECK(m.ntri == 8 * n * n, "two quads: %d triangles", m.ntri);
             CHECK(border_halfedges(&m) == 6 * n, "n=%d rot %d: two quads not watertight along their edge", n, rot);
             qgl_mesh_free(&m);
         }
+}
+
+/* Rotating the corner order gives the same triangles (as sets of points, up to rounding). */
+static void check_rotation(void)
+{
+    for (int rot = 1; rot < 4; rot++) {
+        double qr[24];
+        for (int i = 0; i < 4; i++)
+            memcpy(qr + 6 * i, superquad + 6 * ((i + rot) & 3), 6 * sizeof(double));
+        qgl_mesh a = {0}, b = {0};
+        CHECK(qgl_subdiv_bilinear(superquad, 6, 3, &a) == 0 && qgl_subdiv_bilinear(qr, 6, 3, &b) == 0, "rotation");
+        int unmatched = 0;
+        for (int t = 0; t < b.ntri; t++) {
+            int found = 0;
+            for (int u = 0; u < a.ntri && !found; u++)
+                for (int shift = 0; shift < 3 && !found; shift++) {
+                    double err = 0;
+                    for (int c = 0; c < 3; c++)
+                        for (int k = 0; k < 6; k++)
+                            err = fmax(err, fabs(vert(&b, t, c)[k] - vert(&a, u, (c + shift) % 3)[k]));
+                    found = err < 1e-14;
+                }
+            unmatched += !found;
+        }
+        CHECK(unmatched == 0, "rotation by %d: %d triangles differ", rot, unmatched);
+        qgl_mesh_free(&a);
+        qgl_mesh_free(&b);
+    }
 }
 
 static void check_bad_args(void)
@@ -133,7 +162,7 @@ static void check_bad_args(void)
     CHECK(qgl_subdiv_bilinear(superquad, 0, 2, &m) < 0, "stride 0 accepted");
     CHECK(qgl_subdiv_bilinear(NULL, 6, 2, &m) < 0, "NULL quad accepted");
     CHECK(qgl_subdiv_bilinear(superquad, 6, 2, &m) == 0, "good call");
-    CHECK(qgl_subdiv_bilinear(superquad, 3, 2, &m) < 0 && m.ntri == 8, "stride change accepted");
+    CHECK(qgl_subdiv_bilinear(superquad, 3, 2, &m) < 0 && m.ntri == 16, "stride change accepted");
     CHECK(qgl_subdiv_adaptive(superquad, 6, 4, -1, -1, NULL, &m) < 0, "pos_off out of range accepted");
     qgl_mesh_free(&m);
     qgl_mesh_free(NULL);
@@ -272,6 +301,7 @@ int main(void)
 {
     check_bilinear();
     check_shared_edge();
+    check_rotation();
     check_bad_args();
     check_adaptive();
     printf("%d failures\n", failures);
