@@ -1,10 +1,11 @@
 /* quadgl-glbench: frame-time ratios of the GL layer against the driver's native split (OSMesa).
  *
- * Three targets of issue 4, each timed as the median of several frames (draw + glFinish) in
- * one run: a full-screen non-affine quad at 1024^2 on the shader path; AUTO on a textured
- * latitude/longitude sphere and a jittered colour mesh; and many tiny quads in immediate
- * mode (1M vertices per frame). Native frames call the driver's glBegin/glVertex directly;
- * ours call the qgl* twins. Usage: quadgl-glbench [frames] (default 9). */
+ * Three targets of issue 4, each timed as the median of several frames (draw + glFinish; native
+ * and qgl frames alternate) in one run, wall clock and process CPU time: a full-screen
+ * non-affine quad at 1024^2 on the shader path; AUTO on a textured latitude/longitude sphere
+ * and a jittered colour mesh; and many tiny quads in immediate mode (1M vertices per frame). Native frames call the driver's glBegin/glVertex directly;
+ * ours call the qgl* twins. Usage: quadgl-glbench [frames [name]] (default 9 frames; name runs
+ * only the cases whose title contains it, e.g. "mesh", for profiling). */
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/osmesa.h>
@@ -32,21 +33,47 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static double median_ms(frame_fn f, int native, int frames)
+static double cpu_now(void)
 {
-    double t[64];
-    f(native); /* warm-up: shader compilation, buffer growth */
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static double median(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof t[0], cmp);
+    return t[n / 2];
+}
+
+/* Median wall and CPU milliseconds of native and qgl frames, taken alternately so that the
+ * load of a shared machine weighs on both alike. CPU time counts every thread of the process
+ * (llvmpipe's rasterizer threads too): it hardly moves when other processes compete for the
+ * cores, so its ratio is the steadier figure there. */
+typedef struct timing {
+    double wall[2], cpu[2]; /* [0] native, [1] qgl */
+} timing;
+
+static void measure(frame_fn f, int frames, timing *out)
+{
+    double wall[2][64], cpu[2][64];
+    f(1); /* warm-up: shader compilation, buffer growth */
+    f(0);
     glFinish();
-    for (int i = 0; i < frames; i++) {
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glFinish();
-        double t0 = now();
-        f(native);
-        glFinish();
-        t[i] = (now() - t0) * 1e3;
+    for (int i = 0; i < frames; i++)
+        for (int k = 0; k < 2; k++) {
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glFinish();
+            double t0 = now(), c0 = cpu_now();
+            f(k == 0);
+            glFinish();
+            wall[k][i] = (now() - t0) * 1e3;
+            cpu[k][i] = (cpu_now() - c0) * 1e3;
+        }
+    for (int k = 0; k < 2; k++) {
+        out->wall[k] = median(wall[k], frames);
+        out->cpu[k] = median(cpu[k], frames);
     }
-    qsort(t, (size_t)frames, sizeof t[0], cmp);
-    return t[frames / 2];
 }
 
 #define B(native) ((native) ? glBegin : qglBegin)
@@ -176,21 +203,25 @@ static void make_texture(void)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 }
 
+static const char *only; /* run only cases whose name contains this */
+
 static void report(const char *name, qgl_context *q, qgl_method method, frame_fn setup, frame_fn f, int frames,
                    double target)
 {
+    if (only && !strstr(name, only))
+        return;
     setup(0);
     qgl_gl_set_method(q, method);
-    double native = median_ms(f, 1, frames);
+    timing t;
     qgl_gl_reset_stats(q);
-    double ours = median_ms(f, 0, frames);
+    measure(f, frames, &t);
     qgl_gl_stats_t st;
     qgl_gl_stats(q, &st);
-    double per = (double)(frames + 1);
-    printf("%-34s native %8.2f ms  quadgl %8.2f ms  ratio %5.2f (target <= %.1f) %s | per frame: mvc %.0f split %.0f "
-           "subdiv %.0f draws %.0f\n",
-           name, native, ours, ours / native, target, ours / native <= target ? "met" : "MISSED", st.mvc / per,
-           st.split / per, st.subdiv / per, st.draws / per);
+    double per = (double)(frames + 1), ratio = t.wall[1] / t.wall[0];
+    printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.1f) %-6s cpu ratio %5.2f | per frame: "
+           "mvc %.0f split %.0f subdiv %.0f draws %.0f\n",
+           name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
+           st.mvc / per, st.split / per, st.subdiv / per, st.draws / per);
 }
 
 static void setup_ortho(int unused) { (void)unused, ortho(); }
@@ -200,6 +231,7 @@ int main(int argc, char **argv)
 {
     int frames = argc > 1 ? atoi(argv[1]) : 9;
     frames = frames < 1 ? 1 : frames > 64 ? 64 : frames;
+    only = argc > 2 ? argv[2] : NULL;
     static const int attr[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE,
                                OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
     OSMesaContext osm = OSMesaCreateContextAttribs(attr, NULL);

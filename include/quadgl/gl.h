@@ -38,6 +38,10 @@ typedef struct qgl_gl_desc {
                                             system's GetProcAddress, then dlsym */
     int force_fallback;        /* never use shaders (as on a GL 1.x context) */
     int max_glsl;              /* cap the GLSL version used (e.g. 120); 0 = no cap */
+    int assume_exclusive;      /* the owner sees every GL call and calls qgl_gl_flush before any
+                                  that does not go through this layer (state changes, reads,
+                                  swaps, another context made current): consecutive quad
+                                  primitives are then gathered and drawn as one */
 } qgl_gl_desc;
 
 /* Counters of what took which path; quads counts every quad seen, the others add up to it. */
@@ -59,11 +63,15 @@ QGL_API void qgl_gl_make_current(qgl_context *ctx); /* per thread */
 QGL_API qgl_context *qgl_gl_current(void);
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method);
 QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx);
-/* The shader path the context found: 0 none (CPU fallback only), 150 (geometry shader, GL 3.2
- * compatibility). A GLSL 1.20 path for GL 2.x is planned, not built. */
+/* The shader path the context found: 0 none (CPU fallback only), 120 (GLSL 1.20 on GL 2.x or a
+ * context capped by max_glsl: the cover computed on the CPU, corners sent per vertex), 150
+ * (geometry shader, GL 3.2 compatibility). */
 QGL_API int qgl_gl_shader_level(const qgl_context *ctx);
 QGL_API void qgl_gl_stats(const qgl_context *ctx, qgl_gl_stats_t *out);
 QGL_API void qgl_gl_reset_stats(qgl_context *ctx);
+/* Draw the quads gathered under assume_exclusive (nothing to do otherwise). Every qgl* call
+that reaches the driver flushes by itself; the owner flushes before its own GL calls. */
+QGL_API void qgl_gl_flush(qgl_context *ctx);
 
 /* ---- batches -------------------------------------------------------------------------- */
 
@@ -176,6 +184,10 @@ QGL_API void qglEdgeFlag(unsigned char flag);
 QGL_API void qglEdgeFlagv(const unsigned char *flag);
 QGL_API void qglMaterialf(unsigned face, unsigned pname, float param);
 QGL_API void qglMaterialfv(unsigned face, unsigned pname, const float *params);
+/* Inside a captured primitive: element i of every enabled client array (vertex, colour,
+ * secondary colour, normal, fog coordinate, edge flag, texture units 0-3; client memory or
+ * buffer objects), fed as the attribute calls and the vertex GL specifies. Else forwarded. */
+QGL_API void qglArrayElement(int i);
 
 #ifdef __cplusplus
 }

@@ -3,8 +3,9 @@
  * A context is created inside the application's current GL context. It resolves the GL entry
  * points, reads what the driver offers (version, profile, geometry shaders, vertex array
  * objects, the quads' provoking vertex rule), creates its own vertex array object and
- * buffers, and compiles a first program to prove the shader path works; when that fails the
- * context keeps working on the CPU fallback alone. Options come from the desc, then from the
+ * buffers, and compiles a first program to prove the shader path works (the geometry shader
+ * path on GL 3.2, else the GLSL 1.20 one of glsl120.c); when neither compiles the context
+ * keeps working on the CPU fallback alone. Options come from the desc, then from the
  * environment (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,7 +91,8 @@ static void create_objects(qgl_context *ctx)
     gl->BindBuffer(GL_ARRAY_BUFFER, (GLuint)vbo);
 }
 
-static void probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
+/* Returns whether the GLSL 1.20 path may serve (GL 2.0 compatibility, GLSL 1.20, allowed). */
+static int probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
 {
     struct qgl__gl *gl = &ctx->gl;
     const char *ver = (const char *)gl->GetString(GL_VERSION);
@@ -117,6 +119,16 @@ static void probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
     int cap = d->max_glsl ? d->max_glsl : 1000;
     ctx->shader_level = (v >= 32 && compat && ctx->has_vao && gl->CreateShader && cap >= 150 &&
                          !d->force_fallback) ? 150 : 0;
+    return compat && cap >= 120 && !d->force_fallback && qgl__glsl120_supported(ctx);
+}
+
+/* The best shader path that compiles here: geometry shaders, else GLSL 1.20, else none. */
+static void choose_shader_path(qgl_context *ctx, int glsl120_ok)
+{
+    if (ctx->shader_level == 150 && !qgl__program(ctx, 0))
+        ctx->shader_level = 0;
+    if (ctx->shader_level == 0 && glsl120_ok && qgl__glsl120_init(ctx))
+        ctx->shader_level = 120;
 }
 
 QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
@@ -132,11 +144,10 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     ctx->method = d.method ? d.method : env_method();
     ctx->tolerance_px = d.tolerance_px > 0 ? d.tolerance_px : env_float("QUADGL_TOLERANCE", 0.5f);
     ctx->invisible_area_px = d.invisible_area_px > 0 ? d.invisible_area_px : 4.0f;
-    probe_driver(ctx, &d);
+    int glsl120_ok = probe_driver(ctx, &d);
     if (ctx->has_vao)
         create_objects(ctx);
-    if (ctx->shader_level && !qgl__program(ctx, 0))
-        ctx->shader_level = 0;
+    choose_shader_path(ctx, glsl120_ok);
     return ctx;
 }
 
@@ -147,6 +158,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     if (qgl__tls_current == ctx)
         qgl__tls_current = NULL;
     qgl__programs_free(ctx);
+    qgl__glsl120_free(ctx);
+    free(ctx->arrays);
     if (ctx->has_vao) {
         ctx->gl.DeleteVertexArrays(1, &ctx->vao);
         ctx->gl.DeleteBuffers(1, &ctx->vbo);
@@ -219,6 +232,7 @@ int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned need)
     ok = ok && (!(all & QGL__A_EDGE) || grow((void **)&v->edge, cap, 1));
     for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
         ok = ok && (!(all & (QGL__A_TEX0 << u)) || grow((void **)&v->tex[u], cap, 4 * sizeof(float)));
+    ok = ok && (!(all & QGL__A_MATERIAL) || grow((void **)&v->mat, cap, QGL__MATERIAL_FLOATS * sizeof(float)));
     if (!ok)
         return 0;
     v->cap = cap;
@@ -236,5 +250,6 @@ void qgl__verts_free(qgl__verts *v)
     free(v->edge);
     for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
         free(v->tex[u]);
+    free(v->mat);
     memset(v, 0, sizeof *v);
 }

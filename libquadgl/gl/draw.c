@@ -1,7 +1,8 @@
 /* draw.c: draw a batch of captured quads: read the GL state, plan each quad, run the paths.
  *
- * The state is read once per batch (matrices, viewport, shade model, what is enabled) and
- * decides whether the shader path can reproduce it ("modelled"). Each quad is then planned:
+ * The state is read once per batch (state.c: matrices, viewport, shade model, the
+ * fixed-function key) and decides whether the shader path can reproduce it ("modelled").
+ * Each quad is then planned:
  * polygon mode line/point and select/feedback render modes go to the driver as quads; in
  * AUTO a quad the diagonal split renders exactly (planar, attributes affine in object space)
  * or invisibly (bounding box under invisible_area_px) is split by the driver; the rest takes
@@ -29,114 +30,6 @@ size_t qgl__corner(qgl_topology topo, size_t q, int c)
     return topo == QGL_QUADS ? 4 * q + (size_t)c : 2 * q + (size_t)strip[c];
 }
 
-/* ---- state --------------------------------------------------------------------------------- */
-
-static void mat_mul(const double a[16], const double b[16], double r[16])
-{
-    for (int c = 0; c < 4; c++)
-        for (int row = 0; row < 4; row++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++)
-                s += a[k * 4 + row] * b[c * 4 + k];
-            r[c * 4 + row] = s;
-        }
-}
-
-/* Texture targets and the GL version that has them (querying an unknown one is an error the
- * application would see). */
-static const struct { GLenum target; int version; } tex_targets[] = {
-    {GL_TEXTURE_1D, 10}, {GL_TEXTURE_2D, 10}, {GL_TEXTURE_3D, 12}, {GL_TEXTURE_CUBE_MAP, 13},
-    {GL_TEXTURE_RECTANGLE, 31}};
-#define NTARGETS (sizeof tex_targets / sizeof tex_targets[0])
-
-/* Texture unit 0 as the shader path sees it; returns 0 when it cannot reproduce it. */
-static int query_unit0(qgl_context *ctx, qgl__state *st)
-{
-    struct qgl__gl *gl = &ctx->gl;
-    int ok = 1;
-    for (size_t t = 0; t < NTARGETS; t++)
-        if (tex_targets[t].target != GL_TEXTURE_2D && ctx->version >= tex_targets[t].version &&
-            gl->IsEnabled(tex_targets[t].target))
-            ok = 0;
-    st->texture2d = gl->IsEnabled(GL_TEXTURE_2D);
-    gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat);
-    static const GLenum gens[] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q};
-    for (int i = 0; i < 4; i++)
-        if (gl->IsEnabled(gens[i]))
-            ok = 0, st->lit_or_fog = 1;
-    if (!st->texture2d)
-        return ok;
-    GLint env = GL_MODULATE, alpha = 0, red = 0, lum = 0, inten = 0;
-    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &env);
-    gl->GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_ALPHA_SIZE, &alpha);
-    gl->GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_RED_SIZE, &red);
-    gl->GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_LUMINANCE_SIZE, &lum);
-    gl->GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTENSITY_SIZE, &inten);
-    st->tex_replace = env == GL_REPLACE;
-    st->tex_no_alpha = alpha == 0;
-    if (env != GL_MODULATE && env != GL_REPLACE)
-        ok = 0;
-    if (alpha > 0 && red == 0 && lum == 0 && inten == 0) /* GL_ALPHA: colour passes through */
-        ok = 0;
-    return ok;
-}
-
-static int other_units_enabled(qgl_context *ctx)
-{
-    struct qgl__gl *gl = &ctx->gl;
-    int any = 0;
-    for (GLint u = 1; u < ctx->max_units && !any; u++) {
-        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
-        for (size_t t = 0; t < NTARGETS; t++)
-            any |= ctx->version >= tex_targets[t].version && gl->IsEnabled(tex_targets[t].target);
-    }
-    return any;
-}
-
-static int fixed_function_extras(qgl_context *ctx, qgl__state *st)
-{
-    struct qgl__gl *gl = &ctx->gl;
-    int extra = 0;
-    if (gl->IsEnabled(GL_LIGHTING) || gl->IsEnabled(GL_FOG) || (ctx->version >= 14 && gl->IsEnabled(GL_COLOR_SUM)))
-        extra = 1, st->lit_or_fog = 1;
-    for (GLint i = 0; i < ctx->max_clip_planes; i++)
-        extra |= gl->IsEnabled(GL_CLIP_PLANE0 + (GLenum)i);
-    if (ctx->has_arb_programs)
-        extra |= gl->IsEnabled(GL_VERTEX_PROGRAM_ARB) || gl->IsEnabled(GL_FRAGMENT_PROGRAM_ARB);
-    return extra;
-}
-
-void qgl__query_state(qgl_context *ctx, qgl__state *st)
-{
-    struct qgl__gl *gl = &ctx->gl;
-    double mv[16], pr[16];
-    memset(st, 0, sizeof *st);
-    gl->GetIntegerv(GL_RENDER_MODE, &st->render_mode);
-    gl->GetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
-    if (ctx->version >= 20)
-        gl->GetIntegerv(GL_CURRENT_PROGRAM, &st->program);
-    gl->GetIntegerv(GL_SHADE_MODEL, &st->shade_model);
-    gl->GetIntegerv(GL_VIEWPORT, st->viewport);
-    gl->GetIntegerv(GL_ACTIVE_TEXTURE, &st->active_texture);
-    gl->GetDoublev(GL_MODELVIEW_MATRIX, mv);
-    gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
-    mat_mul(pr, mv, st->mvp);
-    st->polygon_offset = gl->IsEnabled(GL_POLYGON_OFFSET_FILL);
-    int extra = fixed_function_extras(ctx, st);
-    if (st->active_texture != GL_TEXTURE0)
-        gl->ActiveTexture(GL_TEXTURE0);
-    int unit0 = query_unit0(ctx, st);
-    int others = other_units_enabled(ctx);
-    if (st->active_texture != GL_TEXTURE0 || ctx->max_units > 1)
-        gl->ActiveTexture((GLenum)st->active_texture);
-    GLboolean clamp = GL_TRUE;
-    if (ctx->shader_level)
-        gl->GetBooleanv(GL_CLAMP_VERTEX_COLOR, &clamp);
-    st->modelled = ctx->shader_level && !extra && unit0 && !others && st->program == 0 && clamp;
-    if (st->program)
-        st->lit_or_fog = 1; /* an application program: per-vertex work unknown */
-}
-
 /* ---- planning --------------------------------------------------------------------------------- */
 
 static void transform(const double m[16], const float p[4], double out[4])
@@ -144,6 +37,11 @@ static void transform(const double m[16], const float p[4], double out[4])
     for (int r = 0; r < 4; r++)
         out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r] * p[3];
 }
+
+static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+/* Attributes per corner the affinity test may see: colour, secondary, fog, 4 units. */
+#define QGL__ATTR_MAX (4 + 3 + 1 + 4 * QGL_MAX_TEXUNITS)
 
 static int ensure(void **p, size_t *cap, size_t n, size_t elem)
 {
@@ -162,42 +60,42 @@ static int ensure(void **p, size_t *cap, size_t n, size_t elem)
 static double bbox_area_px(const double *clip[4], const GLint vp[4])
 {
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-    for (int i = 0; i < 4; i++) {
-        double x = clip[i][0] / clip[i][3], y = clip[i][1] / clip[i][3];
-        x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+    for (int i = 0; i < 4; i++) { /* comparisons, not fmin/fmax: those are library calls here */
+        double inv = 1.0 / clip[i][3], x = clip[i][0] * inv, y = clip[i][1] * inv;
+        x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1, y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
     }
     return (x1 - x0) * 0.5 * vp[2] * (y1 - y0) * 0.5 * vp[3];
 }
 
-/* The attributes that reach the picture, per corner, for the affinity test: colour when
- * smooth, texture coordinates of unit 0 after the texture matrix when texturing, and with a
- * state the shader path does not model every captured attribute. */
+/* The attributes that reach the picture, per corner, for the affinity test: the colours when
+ * smooth and unlit (primary, and secondary under colour sum), every textured unit's
+ * coordinates after its texture matrix (texgen, where on, is linear in the position: affine),
+ * the fog coordinate when it is fog's source; with a state the shader path does not model,
+ * every captured attribute. */
 static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_t idx[4], double *attr)
 {
+    const qgl__key *key = &st->ffp;
+    int smooth = st->shade_model != GL_FLAT, all = !st->modelled;
     int n = 0;
     for (int c = 0; c < 4; c++) {
-        double *a = attr + c * 16;
+        double *a = attr + c * QGL__ATTR_MAX;
         int k = 0;
         size_t i = idx[c];
-        if ((v->mask & QGL__A_COLOR) && st->shade_model != GL_FLAT)
+        if ((v->mask & QGL__A_COLOR) && smooth)
             for (int j = 0; j < 4; j++)
                 a[k++] = v->col[4 * i + j];
-        if ((v->mask & QGL__A_TEX0) && (st->texture2d || !st->modelled)) {
+        if ((v->mask & QGL__A_COLOR2) && ((smooth && (key->flags & QGL__KF_COLOR_SUM)) || all))
+            for (int j = 0; j < 3; j++)
+                a[k++] = v->col2[3 * i + j];
+        if ((v->mask & QGL__A_FOG) && ((key->fog && !(key->flags & QGL__KF_FOG_DEPTH)) || all))
+            a[k++] = v->fog[i];
+        for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
+            if (!(v->mask & (QGL__A_TEX0 << u)) || !(key->unit[u].target || all))
+                continue;
             double t[4];
-            transform(st->texmat, v->tex[0] + 4 * i, t);
+            transform(key->unit[u].target ? st->texmat[u] : identity, v->tex[u] + 4 * i, t);
             for (int j = 0; j < 4; j++)
                 a[k++] = t[j];
-        }
-        if (!st->modelled) {
-            if (v->mask & QGL__A_COLOR2)
-                for (int j = 0; j < 3; j++)
-                    a[k++] = v->col2[3 * i + j];
-            if (v->mask & QGL__A_FOG)
-                a[k++] = v->fog[i];
-            for (int u = 1; u < QGL_MAX_TEXUNITS; u++)
-                if (v->mask & (QGL__A_TEX0 << u))
-                    for (int j = 0; j < 4; j++)
-                        a[k++] = v->tex[u][4 * i + j];
         }
         n = k;
     }
@@ -207,7 +105,7 @@ static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_
 /* Re-pack corner-major attributes (16 slots each) into the n-per-corner layout of the core. */
 static int split_is_exact(const qgl__state *st, const qgl__verts *v, const size_t idx[4], int *planar)
 {
-    double p[4][3], attr[64], packed[64];
+    double p[4][3], attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
     for (int c = 0; c < 4; c++) {
         const float *q = v->pos + 4 * idx[c];
         if (!(q[3] > 0))
@@ -216,12 +114,12 @@ static int split_is_exact(const qgl__state *st, const qgl__verts *v, const size_
             p[c][k] = q[k] / q[3];
     }
     *planar = qgl_is_planar(p, 1e-6);
-    if (!*planar || st->lit_or_fog)
+    if (!*planar || st->nonaffine)
         return 0;
     int n = gather_attribs(st, v, idx, attr);
     for (int c = 0; c < 4; c++)
         for (int k = 0; k < n; k++)
-            packed[c * n + k] = attr[c * 16 + k];
+            packed[c * n + k] = attr[c * QGL__ATTR_MAX + k];
     return qgl_split_is_exact(p, packed, n, 1e-5);
 }
 
@@ -243,7 +141,8 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         return QGL__P_SPLIT;
     if (ctx->method == QGL_METHOD_SUBDIV)
         return QGL__P_SUBDIV;
-    if (ctx->method == QGL_METHOD_AUTO && !external && bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
+    if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
+        bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
         return QGL__P_SPLIT;
     int planar = 0;
     int exact = split_is_exact(st, v, idx, &planar);
@@ -318,6 +217,28 @@ static void restore(qgl_context *ctx, const saved *s)
             gl->MultiTexCoord4fv(GL_TEXTURE0 + (GLenum)u, s->tex[u]);
 }
 
+/* Per-vertex materials (shader path only) as generic attributes of our VAO, at off. */
+static void upload_materials(qgl_context *ctx, const qgl__verts *v, size_t off)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    int on = (v->mask & QGL__A_MATERIAL) != 0;
+    if (!on && !ctx->material_arrays)
+        return;
+    const GLsizei stride = QGL__MATERIAL_FLOATS * sizeof(float);
+    if (on)
+        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)(v->n * (size_t)stride), v->mat);
+    for (GLuint k = 0; k < QGL__NMATERIAL; k++) {
+        if (on) {
+            gl->VertexAttribPointer(QGL__LOC_MATERIAL + k, k < 8 ? 4 : 2, GL_FLOAT, GL_FALSE, stride,
+                                    (const void *)(uintptr_t)(off + 16 * k));
+            gl->EnableVertexAttribArray(QGL__LOC_MATERIAL + k);
+        } else {
+            gl->DisableVertexAttribArray(QGL__LOC_MATERIAL + k);
+        }
+    }
+    ctx->material_arrays = on;
+}
+
 /* Upload v into our buffer (one block per attribute) and point our VAO's arrays at it. */
 static void upload(qgl_context *ctx, const qgl__verts *v)
 {
@@ -337,6 +258,8 @@ static void upload(qgl_context *ctx, const qgl__verts *v)
             total += (n * blocks[b].size + 15) & ~(size_t)15;
     gl->BindVertexArray(ctx->vao);
     gl->BindBuffer(GL_ARRAY_BUFFER, ctx->vbo);
+    if (v->mask & QGL__A_MATERIAL)
+        total += n * QGL__MATERIAL_FLOATS * sizeof(float);
     if (total > ctx->vbo_size) { /* grow only: reallocating every batch costs page faults */
         ctx->vbo_size = total + total / 2;
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)ctx->vbo_size, NULL, GL_STREAM_DRAW);
@@ -367,6 +290,7 @@ static void upload(qgl_context *ctx, const qgl__verts *v)
         if (on)
             off += (n * blocks[b].size + 15) & ~(size_t)15;
     }
+    upload_materials(ctx, v, off);
 }
 
 /* Corner indices (lines_adjacency order) of strip quads, in our element buffer. */
@@ -407,9 +331,10 @@ int qgl__flat_corner(qgl_context *ctx, qgl_topology topo)
     return topo == QGL_QUADS ? 3 : 2;
 }
 
+/* Issue 4's key bits for the GLSL 1.20 path; QGL__K_EXTRA when the state is beyond them. */
 static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, unsigned char path)
 {
-    unsigned key = QGL__K_COLOR;
+    unsigned key = QGL__K_COLOR | (st->simple ? 0 : QGL__K_EXTRA);
     int corner = qgl__flat_corner(ctx, topo);
     if (st->shade_model == GL_FLAT)
         key |= QGL__K_FLAT | (unsigned)corner << QGL__K_CORNER_SHIFT;
@@ -422,10 +347,26 @@ static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology
     return key;
 }
 
+/* The geometry shader path's key: the state's fixed-function key plus what the run adds. */
+static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, unsigned char path, qgl__key *k)
+{
+    *k = st->ffp;
+    if (st->shade_model == GL_FLAT) {
+        k->flags |= QGL__KF_FLAT;
+        k->corner = (uint8_t)qgl__flat_corner(ctx, topo);
+    }
+    if (path & QGL__P_DEPTH)
+        k->flags |= QGL__KF_DEPTH;
+    if (path & QGL__P_EXTERNAL)
+        k->flags |= QGL__KF_DISCARD;
+}
+
 static int draw_mvc(qgl_context *ctx, const qgl__state *st, qgl_topology topo, size_t q0, size_t nq,
                     unsigned char path, GLint *bound)
 {
-    GLuint prog = qgl__program(ctx, program_key(ctx, st, topo, path));
+    qgl__key key;
+    ffp_key(ctx, st, topo, path, &key);
+    GLuint prog = qgl__program(ctx, &key);
     if (!prog)
         return 0;
     if (*bound != (GLint)prog)
@@ -443,7 +384,7 @@ static void draw_subdiv(qgl_context *ctx, const qgl__state *st, const qgl__verts
                         size_t q0, size_t nq, GLint app_program, GLint *bound)
 {
     ctx->sub.n = 0;
-    ctx->sub.mask = v->mask & ~(unsigned)QGL__A_EDGE;
+    ctx->sub.mask = v->mask & ~(unsigned)(QGL__A_EDGE | QGL__A_MATERIAL);
     for (size_t q = q0; q < q0 + nq; q++)
         qgl__subdivide(ctx, st, v, topo, q, &ctx->sub);
     if (!ctx->sub.n)
@@ -465,6 +406,14 @@ static void count(qgl_context *ctx, unsigned char path, size_t nq)
     case QGL__P_SUBDIV: ctx->stats.subdiv += nq; break;
     default: ctx->stats.passthrough += nq;
     }
+}
+
+/* A run planned for the shader path that its program could not serve went to the fallback:
+ * the counters say where it really went (tests rely on them to prove the shader path ran). */
+static void recount_as_subdiv(qgl_context *ctx, size_t nq)
+{
+    ctx->stats.mvc -= nq;
+    ctx->stats.subdiv += nq;
 }
 
 /* ---- immediate replay (contexts without vertex array objects) ------------------------------- */
@@ -504,7 +453,7 @@ static void draw_replay(qgl_context *ctx, const qgl__state *st, const qgl__verts
 {
     if ((path & 15) == QGL__P_SUBDIV) {
         ctx->sub.n = 0;
-        ctx->sub.mask = v->mask & ~(unsigned)QGL__A_EDGE;
+        ctx->sub.mask = v->mask & ~(unsigned)(QGL__A_EDGE | QGL__A_MATERIAL);
         for (size_t q = q0; q < q0 + nq; q++)
             qgl__subdivide(ctx, st, v, topo, q, &ctx->sub);
         ctx->stats.subdiv_triangles += ctx->sub.n / 3;
@@ -514,6 +463,19 @@ static void draw_replay(qgl_context *ctx, const qgl__state *st, const qgl__verts
     } else {
         replay(ctx, GL_QUAD_STRIP, v, 2 * q0, 2 * nq + 2);
     }
+}
+
+/* The GLSL 1.20 path (glsl120.c), or the CPU fallback for a run it cannot serve. */
+static void draw_glsl120(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
+                         size_t nq, unsigned char path, GLint *bound)
+{
+    if (qgl__glsl120_draw(ctx, st, v, topo, q0, nq, program_key(ctx, st, topo, path), bound))
+        return;
+    recount_as_subdiv(ctx, nq);
+    if (ctx->has_vao)
+        draw_subdiv(ctx, st, v, topo, q0, nq, st->program, bound);
+    else
+        draw_replay(ctx, st, v, topo, q0, nq, QGL__P_SUBDIV);
 }
 
 /* ---- the batch -------------------------------------------------------------------------------- */
@@ -533,7 +495,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
         transform(st->mvp, v->pos + 4 * i, ctx->clip + 4 * i);
     for (size_t q = 0; q < nq; q++) {
         unsigned char p = plan_quad(ctx, st, v, topo, q);
-        if ((p & 15) == QGL__P_MVC && !ctx->has_vao)
+        if ((p & 15) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
             p = QGL__P_SUBDIV;
         ctx->path[q] = p;
     }
@@ -547,6 +509,10 @@ int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo)
         return 0;
     qgl__state st;
     qgl__query_state(ctx, &st);
+    if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
+        st.ffp.flags |= QGL__KF_MATERIAL;
+        st.pv_material = st.nonaffine = 1;
+    }
     if (!plan(ctx, &st, v, topo, nq))
         return -1;
     ctx->stats.quads += nq;
@@ -564,11 +530,15 @@ int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo)
             q1++;
         unsigned char p = ctx->path[q0];
         count(ctx, p, q1 - q0);
-        if (!ctx->has_vao)
+        if ((p & 15) == QGL__P_MVC && ctx->shader_level == 120)
+            draw_glsl120(ctx, &st, v, topo, q0, q1 - q0, p, &bound);
+        else if (!ctx->has_vao)
             draw_replay(ctx, &st, v, topo, q0, q1 - q0, p);
         else if ((p & 15) == QGL__P_MVC) {
-            if (!draw_mvc(ctx, &st, topo, q0, q1 - q0, p, &bound))
+            if (!draw_mvc(ctx, &st, topo, q0, q1 - q0, p, &bound)) {
+                recount_as_subdiv(ctx, q1 - q0);
                 draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
+            }
         } else if ((p & 15) == QGL__P_SUBDIV)
             draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
         else

@@ -91,6 +91,9 @@
     X(void, GetBooleanv, (GLenum, GLboolean *)) \
     X(GLboolean, IsEnabled, (GLenum)) \
     X(void, GetTexEnviv, (GLenum, GLenum, GLint *)) \
+    X(void, GetTexGeniv, (GLenum, GLenum, GLint *)) \
+    X(void, GetLightfv, (GLenum, GLenum, GLfloat *)) \
+    X(void, GetMaterialfv, (GLenum, GLenum, GLfloat *)) \
     X(void, GetTexLevelParameteriv, (GLenum, GLint, GLenum, GLint *)) \
     X(GLenum, GetError, (void)) \
     X(void, ActiveTexture, (GLenum)) \
@@ -132,7 +135,16 @@
     X(void, DeleteProgram, (GLuint)) \
     X(void, UseProgram, (GLuint)) \
     X(GLint, GetUniformLocation, (GLuint, const GLchar *)) \
-    X(void, Uniform1i, (GLint, GLint))
+    X(void, Uniform1i, (GLint, GLint)) \
+    X(void, BindAttribLocation, (GLuint, GLuint, const GLchar *)) \
+    X(void, VertexAttrib4fv, (GLuint, const GLfloat *)) \
+    X(void, GetVertexAttribfv, (GLuint, GLenum, GLfloat *)) \
+    X(void, VertexAttribPointer, (GLuint, GLint, GLenum, GLboolean, GLsizei, const void *)) \
+    X(void, EnableVertexAttribArray, (GLuint)) \
+    X(void, DisableVertexAttribArray, (GLuint)) \
+    X(void, ArrayElement, (GLint)) \
+    X(void, GetPointerv, (GLenum, void **)) \
+    X(void, GetBufferSubData, (GLenum, GLintptr, GLsizeiptr, void *))
 
 #define QGL__MEMBER(ret, name, params) ret (*name) params;
 struct qgl__gl {
@@ -154,6 +166,9 @@ enum {
     QGL__A_EDGE = 1 << 4,
     QGL__A_TEX0 = 1 << 5 /* unit u is QGL__A_TEX0 << u */
 };
+/* Materials given per vertex inside qglBegin/qglEnd: QGL__MATERIAL_FLOATS per vertex, the
+ * vec4s front ambient, diffuse, specular, emission, back the same, then the shininesses. */
+enum { QGL__A_MATERIAL = QGL__A_TEX0 << QGL_MAX_TEXUNITS, QGL__MATERIAL_FLOATS = 36 };
 
 typedef struct qgl__verts {
     size_t n, cap;
@@ -166,27 +181,91 @@ typedef struct qgl__verts {
     float *fog;               /* 1 */
     unsigned char *edge;      /* 1 */
     float *tex[QGL_MAX_TEXUNITS]; /* 4 */
+    float *mat;               /* QGL__MATERIAL_FLOATS */
 } qgl__verts;
 
 int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned mask);
 void qgl__verts_free(qgl__verts *v);
+
+/* ---- the fixed-function state a generated program reproduces (its key) ------------------ */
+
+/* Texture targets, texgen modes, env modes and base-format classes of a unit's key. */
+enum { QGL__T_NONE, QGL__T_1D, QGL__T_2D, QGL__T_3D, QGL__T_CUBE, QGL__T_RECT };
+enum { QGL__G_NONE, QGL__G_OBJECT, QGL__G_EYE, QGL__G_SPHERE, QGL__G_REFLECT, QGL__G_NORMAL };
+enum { QGL__E_MODULATE, QGL__E_REPLACE, QGL__E_DECAL, QGL__E_BLEND, QGL__E_ADD, QGL__E_COMBINE };
+/* RGBA also stands for LUMINANCE_ALPHA, RGB for LUMINANCE, RED, RG (the sampler's alpha is 1). */
+enum { QGL__F_RGBA, QGL__F_RGB, QGL__F_ALPHA, QGL__F_INTENSITY };
+/* COMBINE functions, sources (QGL__S_UNIT0 + n: GL_TEXTUREn) and operands. */
+enum { QGL__C_REPLACE, QGL__C_MODULATE, QGL__C_ADD, QGL__C_ADD_SIGNED, QGL__C_INTERPOLATE, QGL__C_SUBTRACT,
+       QGL__C_DOT3_RGB, QGL__C_DOT3_RGBA };
+enum { QGL__S_TEXTURE, QGL__S_CONSTANT, QGL__S_PRIMARY, QGL__S_PREVIOUS, QGL__S_UNIT0 };
+enum { QGL__O_COLOR, QGL__O_ONE_MINUS_COLOR, QGL__O_ALPHA, QGL__O_ONE_MINUS_ALPHA };
+enum { QGL__FOG_OFF, QGL__FOG_LINEAR, QGL__FOG_EXP, QGL__FOG_EXP2 };
+/* Colour material: faces are bits (front 1, back 2), modes the property tracked. */
+enum { QGL__CM_EMISSION = 1, QGL__CM_AMBIENT, QGL__CM_DIFFUSE, QGL__CM_SPECULAR, QGL__CM_AMBIENT_AND_DIFFUSE };
+
+/* One texture unit. Fields that cannot affect the picture are zero (a disabled unit is all
+ * zero, the COMBINE fields are zero unless env is COMBINE, arguments a function does not read
+ * are zero), so equal pictures give equal keys. */
+typedef struct qgl__unit_key {
+    uint8_t target, env, format, pad;
+    uint8_t gen[4];                     /* s, t, r, q */
+    uint8_t func_rgb, func_a, shift_rgb, shift_a; /* COMBINE; scale = 1 << shift */
+    uint8_t src_rgb[3], src_a[3], op_rgb[3], op_a[3];
+} qgl__unit_key;
+
+/* Key flags. */
+enum {
+    QGL__KF_FLAT = 1 << 0,
+    QGL__KF_DEPTH = 1 << 1,        /* non-planar: gl_FragDepth from the screen weights */
+    QGL__KF_DISCARD = 1 << 2,      /* corners behind the eye: kill fragments outside the quad */
+    QGL__KF_LIGHTING = 1 << 3,
+    QGL__KF_TWO_SIDE = 1 << 4,
+    QGL__KF_LOCAL_VIEWER = 1 << 5,
+    QGL__KF_SEPARATE_SPEC = 1 << 6,
+    QGL__KF_NORMALIZE = 1 << 7,
+    QGL__KF_RESCALE = 1 << 8,
+    QGL__KF_COLOR_SUM = 1 << 9,    /* unlit: add the secondary colour */
+    QGL__KF_FOG_DEPTH = 1 << 10,   /* fog source is the fragment depth (else the fog coordinate) */
+    QGL__KF_MATERIAL = 1 << 11     /* materials given per vertex (generic attributes) */
+};
+
+typedef struct qgl__key {
+    uint32_t flags;
+    uint8_t lights, light_pos, light_spot; /* bit i: light i enabled, positional, a spot */
+    uint8_t cm_face, cm_mode;      /* colour material (QGL__CM_*; 0: off) */
+    uint8_t fog, clip, corner;     /* fog mode, enabled clip planes (bits), flat provoking corner */
+    uint8_t nunits, pad[3];        /* units 0 .. nunits-1 have a target */
+    qgl__unit_key unit[QGL_MAX_TEXUNITS];
+} qgl__key;
+
+/* Generic attribute locations of per-vertex materials (QGL__KF_MATERIAL): front ambient,
+ * diffuse, specular, emission, then back, then (front shininess, back shininess). */
+enum { QGL__LOC_MATERIAL = 6, QGL__NMATERIAL = 9 };
 
 /* ---- GL state the paths need, queried at each draw --------------------------------------- */
 
 typedef struct qgl__state {
     GLint program, render_mode, polygon_mode[2], shade_model, viewport[4], active_texture;
     double mvp[16];           /* projection * modelview, column-major */
-    double texmat[16];        /* texture matrix of unit 0 */
+    double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
     int tex_replace;          /* env mode REPLACE (else MODULATE) */
     int tex_no_alpha;         /* the texture's base format has no alpha (REPLACE keeps Af) */
+    int simple;               /* within issue 4's subset (colour, one 2D MODULATE/REPLACE unit) */
     int modelled;             /* the shader path reproduces every enabled feature */
-    int lit_or_fog;           /* lighting, fog, texgen... : per-vertex work we cannot predict */
+    int nonaffine;            /* per-vertex work whose result is not affine in the captured
+                                 attributes (smooth lighting, sphere map...): never split exactly */
     int polygon_offset;       /* GL_POLYGON_OFFSET_FILL (needs rasterizer depth) */
+    int pv_material;          /* lit quads with per-vertex materials: only the shaders draw them
+                                 right (the driver's split sees the last material only) */
+    qgl__key ffp;             /* the fixed-function part of the program key */
 } qgl__state;
 
 /* ---- programs ------------------------------------------------------------------------------ */
 
+/* Issue 4's key bits, still what the GLSL 1.20 path (glsl120.c) reads; QGL__K_EXTRA marks a
+ * state beyond that subset. */
 enum {
     QGL__K_COLOR = 1 << 0,    /* per-vertex colour (else the current colour, constant) */
     QGL__K_FLAT = 1 << 1,
@@ -195,7 +274,8 @@ enum {
     QGL__K_NOALPHA = 1 << 4,
     QGL__K_DEPTH = 1 << 5,    /* non-planar: write gl_FragDepth from the screen weights */
     QGL__K_DISCARD = 1 << 6,  /* corners behind the eye: cover is the clipped split, kill outside */
-    QGL__K_CORNER_SHIFT = 7   /* 2 bits: the provoking corner */
+    QGL__K_CORNER_SHIFT = 7,  /* 2 bits: the provoking corner */
+    QGL__K_EXTRA = 1 << 9
 };
 
 #define QGL__MAX_PROGRAMS 64
@@ -205,7 +285,7 @@ struct qgl_context {
     qgl_method method;
     float tolerance_px, invisible_area_px;
     int version;              /* GL version * 10 (e.g. 45) */
-    int shader_level;         /* 0, 150 */
+    int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c) */
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
     int quads_follow_pv;
     int has_arb_programs;
@@ -219,6 +299,7 @@ struct qgl_context {
     unsigned given;           /* attributes given since qglBegin */
     float cur_col[4], cur_nrm[3], cur_col2[3], cur_fog, cur_tex[QGL_MAX_TEXUNITS][4];
     unsigned char cur_edge;
+    float cur_mat[QGL__MATERIAL_FLOATS];
 
     /* drawing */
     GLuint vao, vbo, ibo;
@@ -228,8 +309,13 @@ struct qgl_context {
     unsigned char *path;      /* per quad */
     uint32_t *idx;
     size_t clip_cap, path_cap, idx_cap;
-    struct { unsigned key; GLuint prog; } programs[QGL__MAX_PROGRAMS];
-    int nprograms;
+    struct { uint32_t hash; GLuint prog; int failed; qgl__key key; } programs[QGL__MAX_PROGRAMS];
+    int nprograms, next_evict; /* cache (failures too, so a bad key is compiled once) */
+    int material_arrays;      /* our VAO's material attribute arrays are enabled */
+    struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
+    struct qgl__client_arrays *arrays; /* immediate.c: client arrays qglArrayElement reads */
+    int exclusive;            /* desc.assume_exclusive: primitives may wait in pend */
+    qgl__verts pend;          /* pending.c: finished primitives not drawn yet, as GL_QUADS */
 };
 
 /* Paths a quad can take. */
@@ -245,9 +331,20 @@ size_t qgl__nquads(qgl_topology topo, size_t n);
 size_t qgl__corner(qgl_topology topo, size_t q, int c);
 int qgl__flat_corner(qgl_context *ctx, qgl_topology topo);
 
-/* shader.c */
-GLuint qgl__program(qgl_context *ctx, unsigned key);
+/* shader.c: the program for a key (NULL: plain smooth colour), built on first use; 0 when
+ * it cannot be built (a warning is logged once). */
+GLuint qgl__program(qgl_context *ctx, const qgl__key *key);
 void qgl__programs_free(qgl_context *ctx);
+/* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */
+int qgl__key_slots(const qgl__key *key);
+
+/* glsl120.c: the shader path without geometry shaders. draw returns 0 when it cannot draw
+ * the run (a key it does not implement, a program the driver refuses): use the fallback. */
+int qgl__glsl120_supported(qgl_context *ctx);
+int qgl__glsl120_init(qgl_context *ctx);
+void qgl__glsl120_free(qgl_context *ctx);
+int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
+                      size_t nq, unsigned key, GLint *bound);
 
 /* fallback.c: append the subdivision of quad q of v to out (same attributes as v). */
 int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
@@ -256,5 +353,19 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
 /* Per-thread current context (read directly on the immediate-mode hot path). */
 extern __attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;
 qgl_context *qgl__current(void);
+
+/* immediate.c: the driver's current value of one attribute (QGL__A_* bit). */
+void qgl__driver_current(qgl_context *c, unsigned bit, float out[4]);
+
+/* pending.c: draw a finished primitive now, or (assume_exclusive) append it to the pending
+   batch; returns its number of quads, or -1. qgl__flush draws the pending batch first: call
+   it before anything reaches the driver. */
+int qgl__submit(qgl_context *ctx, qgl__verts *v, qgl_topology topo);
+void qgl__flush_pending(qgl_context *ctx);
+static inline void qgl__flush(qgl_context *ctx)
+{
+    if (ctx->pend.n)
+        qgl__flush_pending(ctx);
+}
 
 #endif

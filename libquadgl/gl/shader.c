@@ -1,73 +1,343 @@
-/* shader.c: GLSL programs of the shader path, generated from a small state key and cached.
+/* shader.c: GLSL programs of the shader path, generated from a fixed-function key and cached.
  *
- * Vertex shader: the driver's own per-vertex work for the modelled state (ftransform, which
- * GLSL guarantees invariant with fixed function, so our edges meet the driver's exactly;
- * clamped colour; texture matrix of unit 0). Geometry shader (lines_adjacency: the four
- * corners of one quad): classifies the screen quad and emits its exact cover in clip space
- * (convex: two triangles; concave: split through the reflex corner; bow-tie: the two lobes
- * meeting at the crossing point, each keeping its own winding, so facing and culling are per
- * lobe; a corner at or behind the eye: the clipped split, with the fragment shader killing
- * what lies outside the quad). It passes the corners' attributes flat, and the vectors
- * g_i = x_i W - X w_i (clip corner i against the emitted vertex X), which are linear in clip
- * space: perspective interpolation makes them W_f * s~_i(p), a positive multiple of the
- * homogeneous s~_i of the core, which leaves the weights unchanged. Fragment shader: the
- * core's robust formula in float (tangent of half angles in the non-cancelling form, the
- * limits on corners and on edge segments), then colour, texture and, for non-planar quads
- * only, window depth from the screen weights. */
+ * Vertex shader: the driver's own per-vertex work, per corner, for exactly the features the
+ * key enables: ftransform (which GLSL guarantees invariant with fixed function, so our edges
+ * meet the driver's), lighting (each enabled light directional, positional or spot, with
+ * attenuation, local viewer, two sides, colour material, per-vertex materials, separate
+ * specular, NORMALIZE / RESCALE_NORMAL), clamped colours, secondary colour, texgen (object
+ * and eye linear, sphere, reflection and normal map) and the texture matrix of every unit,
+ * the fog coordinate (given, or the eye depth |z_e|) and the eye position for clip planes.
+ * Parameters are the compatibility profile's built-in uniforms (gl_LightSource,
+ * gl_FrontMaterial, gl_EyePlaneS, gl_Fog, gl_ClipPlane...), which the driver keeps current,
+ * so a program depends on the key only and nothing is uploaded per draw.
+ * Geometry shader (lines_adjacency: the four corners of one quad): classifies the screen quad
+ * and emits its exact cover in clip space (convex: two triangles; concave: split through the
+ * reflex corner; bow-tie: the two lobes meeting at the crossing point, each keeping its own
+ * winding, so facing is per lobe; a corner at or behind the eye: the clipped split, with the
+ * fragment shader killing what lies outside the quad). It passes the corners' per-vertex
+ * results flat (one mat4 per vec4 result: column i is corner i), and g_i = x_i W - X w_i
+ * (clip corner i against the emitted vertex X), linear in clip space: perspective
+ * interpolation makes them W_f * s~_i(p), a positive multiple of the core's homogeneous s~_i,
+ * which leaves the weights unchanged. Clip distances come from the corners' eye positions
+ * (exact for planar quads, as the driver's own clipping); a non-planar quad is clipped per
+ * fragment at its interpolated eye position instead.
+ * Fragment shader: the core's robust weights in float (tangent of half angles in the
+ * non-cancelling form, the limits on corners and on edge segments), then everything the
+ * driver interpolates is interpolated with them (colours after lighting, both faces' colours
+ * picked by gl_FrontFacing, texture coordinates after texgen and matrix, fog coordinate), and
+ * the fragment stages follow as fixed function orders them: texture environments unit by unit
+ * (MODULATE, REPLACE, DECAL, BLEND, ADD per base format; COMBINE with its sources, operands
+ * and scales), colour sum, fog, and window depth from the screen weights for non-planar quads
+ * only. Programs are cached by key (hash, then comparison), 64 at most; failures are cached
+ * too, with one logged warning, and the caller falls back to the CPU path. */
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl_internal.h"
 
-static const char vs_src[] =
-    "void main() {\n"
-    "    gl_Position = ftransform();\n"
-    "#if COLOR\n"
-    "    q_col = clamp(gl_Color, 0.0, 1.0);\n"
-    "#endif\n"
-    "#if TEX\n"
-    "    q_tex = gl_TextureMatrix[0] * gl_MultiTexCoord0;\n"
-    "#endif\n"
-    "}\n";
+/* ---- a string builder ------------------------------------------------------------------------ */
 
-static const char gs_src[] =
-    "layout(lines_adjacency) in;\n"
-    "layout(triangle_strip, max_vertices = 6) out;\n"
-    "#if COLOR\n"
-    "in vec4 q_col[];\n"
-    "#endif\n"
-    "#if TEX\n"
-    "in vec4 q_tex[];\n"
-    "#endif\n"
-    "vec4 C[4];\n"
-    "void emit(vec4 X) {\n"
-    "    gl_Position = X;\n"
-    "    g0 = C[0].xy * X.w - X.xy * C[0].w;\n"
-    "    g1 = C[1].xy * X.w - X.xy * C[1].w;\n"
-    "    g2 = C[2].xy * X.w - X.xy * C[2].w;\n"
-    "    g3 = C[3].xy * X.w - X.xy * C[3].w;\n"
-    "#if COLOR && FLAT\n"
-    "    f_flat = q_col[CORNER];\n"
-    "#elif COLOR\n"
-    "    f_col = mat4(q_col[0], q_col[1], q_col[2], q_col[3]);\n"
-    "#endif\n"
-    "#if TEX\n"
-    "    f_tex = mat4(q_tex[0], q_tex[1], q_tex[2], q_tex[3]);\n"
-    "#endif\n"
-    "#if DEPTH\n"
-    "    f_w = vec4(C[0].w, C[1].w, C[2].w, C[3].w);\n"
-    "    f_z = (vec4(C[0].z / C[0].w, C[1].z / C[1].w, C[2].z / C[2].w, C[3].z / C[3].w)\n"
-    "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n"
-    "#endif\n"
-    "    EmitVertex();\n"
-    "}\n"
-    "void tri(vec4 a, vec4 b, vec4 c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
+typedef struct sb {
+    char *p;
+    size_t n, cap;
+    int oom;
+} sb;
+
+__attribute__((format(printf, 2, 3))) static void put(sb *b, const char *fmt, ...)
+{
+    if (b->oom)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int len = vsnprintf(b->p ? b->p + b->n : NULL, b->p ? b->cap - b->n : 0, fmt, ap);
+        va_end(ap);
+        if (len < 0) {
+            b->oom = 1;
+            return;
+        }
+        if (b->p && b->n + (size_t)len < b->cap) {
+            b->n += (size_t)len;
+            return;
+        }
+        size_t cap = b->cap ? 2 * b->cap : 4096;
+        while (cap < b->n + (size_t)len + 1)
+            cap *= 2;
+        char *q = realloc(b->p, cap);
+        if (!q) {
+            b->oom = 1;
+            return;
+        }
+        b->p = q;
+        b->cap = cap;
+    }
+}
+
+/* ---- what a key needs ------------------------------------------------------------------------ */
+
+static int lit(const qgl__key *k)
+{
+    return (k->flags & QGL__KF_LIGHTING) != 0;
+}
+
+static int two_sided(const qgl__key *k)
+{
+    return lit(k) && (k->flags & QGL__KF_TWO_SIDE);
+}
+
+static int has_secondary(const qgl__key *k)
+{
+    return lit(k) ? (k->flags & QGL__KF_SEPARATE_SPEC) != 0 : (k->flags & QGL__KF_COLOR_SUM) != 0;
+}
+
+static int gen_uses(const qgl__key *k, int lo, int hi)
+{
+    for (int u = 0; u < k->nunits; u++)
+        for (int c = 0; c < 4; c++)
+            if (k->unit[u].target && k->unit[u].gen[c] >= lo && k->unit[u].gen[c] <= hi)
+                return 1;
+    return 0;
+}
+
+static int frag_clip(const qgl__key *k)
+{
+    return k->clip && (k->flags & QGL__KF_DEPTH);
+}
+
+static int needs_normal(const qgl__key *k)
+{
+    return lit(k) || gen_uses(k, QGL__G_SPHERE, QGL__G_NORMAL);
+}
+
+static int needs_eye(const qgl__key *k)
+{
+    return lit(k) || k->clip || (k->fog && (k->flags & QGL__KF_FOG_DEPTH)) || gen_uses(k, QGL__G_EYE, QGL__G_REFLECT);
+}
+
+int qgl__key_slots(const qgl__key *k)
+{
+    int per = k->flags & QGL__KF_FLAT ? 1 : 4;
+    int colours = per * (1 + has_secondary(k)) * (two_sided(k) ? 2 : 1);
+    int n = 2 + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
+    for (int u = 0; u < k->nunits; u++)
+        n += k->unit[u].target ? 4 : 0;
+    return n;
+}
+
+/* ---- vertex shader --------------------------------------------------------------------------- */
+
+static const char *const material_names[QGL__NMATERIAL] = {"m_fa", "m_fd", "m_fs", "m_fe",
+                                                           "m_ba", "m_bd", "m_bs", "m_be", "m_sh"};
+
+/* The material of one face (f: "Front" / "Back"), with per-vertex materials and colour
+ * material substituted as the driver does. */
+static void vs_material(sb *b, const qgl__key *k, int back)
+{
+    const char *F = back ? "Back" : "Front";
+    const char *p = back ? "m_b" : "m_f";
+    put(b, "qgl_mat material_%s() {\n", F);
+    if (k->flags & QGL__KF_MATERIAL)
+        put(b, "    qgl_mat m = qgl_mat(%se, %sa, %sd, %ss, m_sh.%c);\n", p, p, p, p, back ? 'y' : 'x');
+    else
+        put(b, "    qgl_mat m = qgl_mat(gl_%sMaterial.emission, gl_%sMaterial.ambient, gl_%sMaterial.diffuse,\n"
+               "                        gl_%sMaterial.specular, gl_%sMaterial.shininess);\n", F, F, F, F, F);
+    if (k->cm_mode && (k->cm_face & (back ? 2 : 1))) {
+        static const char *const field[] = {"", "m.e", "m.a", "m.d", "m.s", "m.a = m.d"};
+        put(b, "    %s = gl_Color;\n", field[k->cm_mode]);
+    }
+    put(b, "    return m;\n}\n");
+}
+
+/* One light's contribution, unrolled with its kind known. */
+static void vs_light(sb *b, const qgl__key *k, int i)
+{
+    int pos = (k->light_pos >> i) & 1, spot = (k->light_spot >> i) & 1;
+    put(b, "    {\n");
+    if (pos) {
+        put(b, "        vec3 VP = gl_LightSource[%d].position.xyz / gl_LightSource[%d].position.w - eye;\n", i, i);
+        put(b, "        float d = length(VP);\n        VP /= d;\n");
+        put(b, "        float att = 1.0 / (gl_LightSource[%d].constantAttenuation + d * (gl_LightSource[%d].linearAttenuation\n"
+               "                     + d * gl_LightSource[%d].quadraticAttenuation));\n", i, i, i);
+    } else {
+        put(b, "        vec3 VP = normalize(gl_LightSource[%d].position.xyz);\n        float att = 1.0;\n", i);
+    }
+    if (spot)
+        put(b, "        float sd = dot(-VP, normalize(gl_LightSource[%d].spotDirection));\n"
+               "        att *= sd >= gl_LightSource[%d].spotCosCutoff ? pow(max(sd, 0.0), gl_LightSource[%d].spotExponent) : 0.0;\n",
+            i, i, i);
+    put(b, "        amb += att * gl_LightSource[%d].ambient.rgb;\n", i);
+    put(b, "        float nv = dot(n, VP);\n        if (nv > 0.0) {\n");
+    put(b, "            dif += att * nv * gl_LightSource[%d].diffuse.rgb;\n", i);
+    put(b, "            float nh = max(dot(n, normalize(VP + V)), 0.0);\n");
+    put(b, "            spe += att * (nh > 0.0 ? pow(nh, m.sh) : (m.sh == 0.0 ? 1.0 : 0.0)) * gl_LightSource[%d].specular.rgb;\n", i);
+    put(b, "        }\n    }\n");
+}
+
+static void vs_lighting(sb *b, const qgl__key *k)
+{
+    put(b, "struct qgl_mat { vec4 e, a, d, s; float sh; };\n");
+    vs_material(b, k, 0);
+    if (two_sided(k))
+        vs_material(b, k, 1);
+    put(b, "void lighting(qgl_mat m, vec3 n, vec3 eye, out vec4 pri, out vec4 sec) {\n");
+    put(b, "    vec3 amb = vec3(0.0), dif = vec3(0.0), spe = vec3(0.0);\n");
+    put(b, "    vec3 V = %s;\n", k->flags & QGL__KF_LOCAL_VIEWER ? "-normalize(eye)" : "vec3(0.0, 0.0, 1.0)");
+    for (int i = 0; i < 8; i++)
+        if ((k->lights >> i) & 1)
+            vs_light(b, k, i);
+    put(b, "    pri = vec4(m.e.rgb + m.a.rgb * gl_LightModel.ambient.rgb + amb * m.a.rgb + dif * m.d.rgb, m.d.a);\n");
+    if (k->flags & QGL__KF_SEPARATE_SPEC)
+        put(b, "    sec = vec4(clamp(spe * m.s.rgb, 0.0, 1.0), 0.0);\n");
+    else
+        put(b, "    pri.rgb += spe * m.s.rgb;\n    sec = vec4(0.0);\n");
+    put(b, "    pri = clamp(pri, 0.0, 1.0);\n}\n");
+}
+
+/* Texture coordinate c (0..3 = s, t, r, q) of unit u after texgen. */
+static void vs_texgen(sb *b, int u, int c, int mode)
+{
+    static const char comp[] = "xyzw", plane[] = "STRQ";
+    switch (mode) {
+    case QGL__G_OBJECT: put(b, "    t.%c = dot(gl_ObjectPlane%c[%d], gl_Vertex);\n", comp[c], plane[c], u); break;
+    case QGL__G_EYE: put(b, "    t.%c = dot(gl_EyePlane%c[%d], eye4);\n", comp[c], plane[c], u); break;
+    case QGL__G_SPHERE: put(b, "    t.%c = sphere.%c;\n", comp[c], comp[c]); break;
+    case QGL__G_REFLECT: put(b, "    t.%c = refl.%c;\n", comp[c], comp[c]); break;
+    case QGL__G_NORMAL: put(b, "    t.%c = n.%c;\n", comp[c], comp[c]); break;
+    default: break;
+    }
+}
+
+static void vs_declarations(sb *b, const qgl__key *k)
+{
+    put(b, "out vec4 q_pri;\n");
+    if (has_secondary(k))
+        put(b, "out vec4 q_sec;\n");
+    if (two_sided(k))
+        put(b, "out vec4 q_bpri;\n%s", has_secondary(k) ? "out vec4 q_bsec;\n" : "");
+    if (k->fog)
+        put(b, "out float q_fog;\n");
+    if (k->clip)
+        put(b, "out vec4 q_eye;\n");
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target)
+            put(b, "out vec4 q_tex%d;\n", u);
+    if (lit(k) && (k->flags & QGL__KF_MATERIAL)) {
+        for (int i = 0; i < QGL__NMATERIAL - 1; i++)
+            put(b, "in vec4 %s;\n", material_names[i]);
+        put(b, "in vec2 m_sh;\n");
+    }
+}
+
+static void vs_source(sb *b, const qgl__key *k)
+{
+    put(b, "#version 150 compatibility\n");
+    vs_declarations(b, k);
+    if (lit(k))
+        vs_lighting(b, k);
+    put(b, "void main() {\n    gl_Position = ftransform();\n");
+    if (needs_eye(k))
+        put(b, "    vec4 eye4 = gl_ModelViewMatrix * gl_Vertex;\n    vec3 eye = eye4.xyz;\n");
+    if (needs_normal(k)) {
+        put(b, "    vec3 n = gl_NormalMatrix * gl_Normal;\n");
+        if (k->flags & QGL__KF_NORMALIZE)
+            put(b, "    n = normalize(n);\n");
+        else if (k->flags & QGL__KF_RESCALE)
+            put(b, "    n *= gl_NormalScale;\n");
+    }
+    if (lit(k)) {
+        put(b, "    vec4 sec;\n    lighting(material_Front(), n, eye, q_pri, sec);\n");
+        if (has_secondary(k))
+            put(b, "    q_sec = sec;\n");
+        if (two_sided(k))
+            put(b, "    lighting(material_Back(), -n, eye, q_bpri, sec);\n");
+        if (two_sided(k) && has_secondary(k))
+            put(b, "    q_bsec = sec;\n");
+    } else {
+        put(b, "    q_pri = clamp(gl_Color, 0.0, 1.0);\n");
+        if (has_secondary(k))
+            put(b, "    q_sec = vec4(clamp(gl_SecondaryColor.rgb, 0.0, 1.0), 0.0);\n");
+    }
+    if (k->fog)
+        put(b, "    q_fog = %s;\n", k->flags & QGL__KF_FOG_DEPTH ? "abs(eye4.z)" : "gl_FogCoord");
+    if (k->clip)
+        put(b, "    q_eye = eye4;\n");
+    if (gen_uses(k, QGL__G_SPHERE, QGL__G_REFLECT)) {
+        put(b, "    vec3 refl = reflect(normalize(eye), n);\n");
+        put(b, "    float sm = 2.0 * sqrt(refl.x * refl.x + refl.y * refl.y + (refl.z + 1.0) * (refl.z + 1.0));\n");
+        put(b, "    vec2 sphere = refl.xy / sm + 0.5;\n");
+    }
+    for (int u = 0; u < k->nunits; u++) {
+        if (!k->unit[u].target)
+            continue;
+        put(b, "    {\n    vec4 t = gl_MultiTexCoord%d;\n", u);
+        for (int c = 0; c < 4; c++)
+            vs_texgen(b, u, c, k->unit[u].gen[c]);
+        put(b, "    q_tex%d = gl_TextureMatrix[%d] * t;\n    }\n", u, u);
+    }
+    put(b, "}\n");
+}
+
+/* ---- geometry shader ------------------------------------------------------------------------- */
+
+/* The flat per-corner values: name, GLSL type when smooth and whether flat shading applies. */
+typedef struct flat_var {
+    const char *name;
+    int colour; /* flat shading passes only the provoking corner's value */
+    int scalar; /* float per corner (packed into one vec4) */
+} flat_var;
+
+static int flat_vars(const qgl__key *k, flat_var out[16])
+{
+    int n = 0;
+    out[n++] = (flat_var){"pri", 1, 0};
+    if (has_secondary(k))
+        out[n++] = (flat_var){"sec", 1, 0};
+    if (two_sided(k)) {
+        out[n++] = (flat_var){"bpri", 1, 0};
+        if (has_secondary(k))
+            out[n++] = (flat_var){"bsec", 1, 0};
+    }
+    if (k->fog)
+        out[n++] = (flat_var){"fog", 0, 1};
+    if (frag_clip(k))
+        out[n++] = (flat_var){"eye", 0, 0};
+    static const char *const tex[QGL_MAX_TEXUNITS] = {"tex0", "tex1", "tex2", "tex3"};
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target)
+            out[n++] = (flat_var){tex[u], 0, 0};
+    return n;
+}
+
+static const char *flat_type(const qgl__key *k, const flat_var *v)
+{
+    if (v->colour && (k->flags & QGL__KF_FLAT))
+        return "vec4";
+    return v->scalar ? "vec4" : "mat4";
+}
+
+static void varyings(sb *b, const qgl__key *k, const char *dir)
+{
+    flat_var v[16];
+    int n = flat_vars(k, v);
+    put(b, "%s vec4 gA, gB;\n", dir);
+    for (int i = 0; i < n; i++)
+        put(b, "flat %s %s f_%s;\n", dir, flat_type(k, &v[i]), v[i].name);
+    if (k->flags & QGL__KF_DEPTH)
+        put(b, "flat %s vec4 f_w, f_z;\n", dir);
+}
+
+static const char gs_cover[] =
+    "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
     "float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }\n"
-    /* the clip point on edge a->b whose projection is at screen parameter t */
-    "vec4 on_edge(int a, int b, float t) {\n"
+    /* C[4] (and its eye position) := the clip point on edge a->b at screen parameter t */
+    "void set_cross(int a, int b, float t) {\n"
     "    float s = t * C[a].w / ((1.0 - t) * C[b].w + t * C[a].w);\n"
-    "    return mix(C[a], C[b], s);\n"
+    "    C[4] = mix(C[a], C[b], s);\n"
+    "#if CLIP\n"
+    "    E[4] = mix(E[a], E[b], s);\n"
+    "#endif\n"
     "}\n"
     /* screen parameters (t on a->b, u on c->d) of the crossing of two segments */
     "vec2 crossing(vec2 a, vec2 b, vec2 c, vec2 d) {\n"
@@ -78,10 +348,14 @@ static const char gs_src[] =
     "bool inside01(vec2 tu) { return all(greaterThanEqual(tu, vec2(0.0))) && all(lessThanEqual(tu, vec2(1.0))); }\n"
     "void main() {\n"
     "    for (int i = 0; i < 4; i++) C[i] = gl_in[i].gl_Position;\n"
+    "#if CLIP\n"
+    "    for (int i = 0; i < 4; i++) E[i] = q_eye[i];\n"
+    "#endif\n"
+    "    corners();\n"
     "    vec4 w = vec4(C[0].w, C[1].w, C[2].w, C[3].w);\n"
     "    if (any(lessThanEqual(w, vec4(0.0)))) {\n"
     "        if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
-    "        tri(C[0], C[1], C[2]); tri(C[0], C[2], C[3]);\n"
+    "        tri(0, 1, 2); tri(0, 2, 3);\n"
     "        return;\n"
     "    }\n"
     "    vec2 v[4];\n"
@@ -93,34 +367,87 @@ static const char gs_src[] =
     "        if (k < 0.0) { nneg++; ineg = i; }\n"
     "    }\n"
     "    if (npos + nneg == 0) return;\n"
-    "    if (npos == 0 || nneg == 0) { tri(C[0], C[1], C[2]); tri(C[0], C[2], C[3]); return; }\n"
+    "    if (npos == 0 || nneg == 0) { tri(0, 1, 2); tri(0, 2, 3); return; }\n"
     "    if (npos != nneg) {\n"
     "        int r = npos < nneg ? ipos : ineg;\n"
-    "        tri(C[r], C[(r + 1) & 3], C[(r + 2) & 3]); tri(C[r], C[(r + 2) & 3], C[(r + 3) & 3]);\n"
+    "        tri(r, (r + 1) & 3, (r + 2) & 3); tri(r, (r + 2) & 3, (r + 3) & 3);\n"
     "        return;\n"
     "    }\n"
     "    vec2 tu = crossing(v[0], v[1], v[2], v[3]);\n"
     "    if (inside01(tu)) {\n"
-    "        vec4 X = on_edge(0, 1, tu.x);\n"
-    "        tri(X, C[1], C[2]); tri(X, C[3], C[0]);\n"
+    "        set_cross(0, 1, tu.x);\n"
+    "        tri(4, 1, 2); tri(4, 3, 0);\n"
     "        return;\n"
     "    }\n"
     "    tu = crossing(v[1], v[2], v[3], v[0]);\n"
     "    if (inside01(tu)) {\n"
-    "        vec4 X = on_edge(1, 2, tu.x);\n"
-    "        tri(X, C[2], C[3]); tri(X, C[0], C[1]);\n"
+    "        set_cross(1, 2, tu.x);\n"
+    "        tri(4, 2, 3); tri(4, 0, 1);\n"
     "        return;\n"
     "    }\n"
-    "    tri(C[0], C[1], C[2]); tri(C[0], C[2], C[3]);\n"
+    "    tri(0, 1, 2); tri(0, 2, 3);\n"
     "}\n";
 
-static const char fs_src[] =
-    "#if TEX\n"
-    "uniform sampler2D u_tex;\n"
-    "#endif\n"
+static void gs_source(sb *b, const qgl__key *k)
+{
+    flat_var v[16];
+    int n = flat_vars(k, v);
+    int hw_clip = k->clip && !frag_clip(k);
+    put(b, "#version 150 compatibility\n#define CLIP %d\n", k->clip ? 1 : 0);
+    put(b, "layout(lines_adjacency) in;\nlayout(triangle_strip, max_vertices = 6) out;\n");
+    for (int i = 0; i < n; i++)
+        put(b, "in %s q_%s[];\n", v[i].scalar ? "float" : "vec4", v[i].name);
+    if (k->clip && !frag_clip(k))
+        put(b, "in vec4 q_eye[];\n");
+    varyings(b, k, "out");
+    put(b, "vec4 C[5];\n");
+    if (k->clip)
+        put(b, "vec4 E[5];\n");
+    /* the flat values are the same for every emitted vertex: gathered once */
+    for (int i = 0; i < n; i++)
+        put(b, "%s c_%s;\n", flat_type(k, &v[i]), v[i].name);
+    if (k->flags & QGL__KF_DEPTH)
+        put(b, "vec4 c_w, c_z;\n");
+    put(b, "void corners() {\n");
+    for (int i = 0; i < n; i++) {
+        const char *nm = v[i].name;
+        if (v[i].colour && (k->flags & QGL__KF_FLAT))
+            put(b, "    c_%s = q_%s[%d];\n", nm, nm, k->corner);
+        else if (v[i].scalar)
+            put(b, "    c_%s = vec4(q_%s[0], q_%s[1], q_%s[2], q_%s[3]);\n", nm, nm, nm, nm, nm);
+        else
+            put(b, "    c_%s = mat4(q_%s[0], q_%s[1], q_%s[2], q_%s[3]);\n", nm, nm, nm, nm, nm);
+    }
+    if (k->flags & QGL__KF_DEPTH)
+        put(b, "    c_w = vec4(C[0].w, C[1].w, C[2].w, C[3].w);\n"
+               "    c_z = (vec4(C[0].z / C[0].w, C[1].z / C[1].w, C[2].z / C[2].w, C[3].z / C[3].w)\n"
+               "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n");
+    put(b, "}\n");
+    put(b, "void emit(int k) {\n    vec4 X = C[k];\n    gl_Position = X;\n");
+    put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w);\n");
+    put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w);\n");
+    for (int p = 0; p < 8; p++)
+        if ((k->clip >> p) & 1)
+            {
+            if (hw_clip)
+                put(b, "    gl_ClipDistance[%d] = dot(gl_ClipPlane[%d], E[k]);\n", p, p);
+            else
+                put(b, "    gl_ClipDistance[%d] = 1.0;\n", p);
+        }
+    for (int i = 0; i < n; i++)
+        put(b, "    f_%s = c_%s;\n", v[i].name, v[i].name);
+    if (k->flags & QGL__KF_DEPTH)
+        put(b, "    f_w = c_w;\n    f_z = c_z;\n");
+    put(b, "    EmitVertex();\n}\n");
+    put(b, "%s", gs_cover);
+}
+
+/* ---- fragment shader ------------------------------------------------------------------------- */
+
+static const char fs_weights[] =
     /* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once. */
     "vec4 weights() {\n"
-    "    vec4 sx = vec4(g0.x, g1.x, g2.x, g3.x), sy = vec4(g0.y, g1.y, g2.y, g3.y);\n"
+    "    vec4 sx = vec4(gA.x, gA.z, gB.x, gB.z), sy = vec4(gA.y, gA.w, gB.y, gB.w);\n"
     "    vec4 sxn = sx.yzwx, syn = sy.yzwx;\n"
     "    vec4 rho = sqrt(sx * sx + sy * sy);\n"
     "    vec4 rhon = rho.yzwx;\n"
@@ -141,145 +468,330 @@ static const char fs_src[] =
     "    }\n"
     "    if (nv > 0.0) lam = onv / nv;\n"
     "    return lam;\n"
-    "}\n"
-    "void main() {\n"
-    "    vec4 lam = weights();\n"
-    "#if DISCARD\n"
-    "    if (any(lessThan(lam, vec4(0.0)))) discard;\n"
-    "#endif\n"
-    "#if COLOR && FLAT\n"
-    "    vec4 col = f_flat;\n"
-    "#elif COLOR\n"
-    "    vec4 col = f_col * lam;\n"
-    "#else\n"
-    "    vec4 col = gl_Color;\n"
-    "#endif\n"
-    "#if TEX\n"
-    "    vec4 tc = f_tex * lam;\n"
-    "    vec4 texel = textureProj(u_tex, tc.xyw);\n"
-    "#if REPLACE && NOALPHA\n"
-    "    col = vec4(texel.rgb, col.a);\n"
-    "#elif REPLACE\n"
-    "    col = texel;\n"
-    "#else\n"
-    "    col *= texel;\n"
-    "#endif\n"
-    "#endif\n"
-    "    gl_FragColor = col;\n"
-    "#if DEPTH\n"
-    "    vec4 scr = f_w * lam;\n"
-    "    gl_FragDepth = dot(scr, f_z) / dot(scr, vec4(1.0));\n"
-    "#endif\n"
     "}\n";
 
-/* Interface blocks would tie stage names together; plain declarations per stage are simpler
- * and every stage sees only what its key enables. */
-static void header(char *buf, size_t n, unsigned key, int stage)
+static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "sampler2DRect"};
+
+/* The texel of unit u (texture coordinates interpolated, divided by q as fixed function). */
+static void fs_texel(sb *b, const qgl__key *k, int u)
 {
-    static const char *const io[3][2] = {{"", "out"}, {"in", "out"}, {"in", ""}};
-    int len = snprintf(buf, n,
-                       "#version 150 compatibility\n#define COLOR %d\n#define FLAT %d\n#define TEX %d\n"
-                       "#define REPLACE %d\n#define NOALPHA %d\n#define DEPTH %d\n#define DISCARD %d\n"
-                       "#define CORNER %u\n",
-                       !!(key & QGL__K_COLOR), !!(key & QGL__K_FLAT), !!(key & QGL__K_TEX),
-                       !!(key & QGL__K_REPLACE), !!(key & QGL__K_NOALPHA), !!(key & QGL__K_DEPTH),
-                       !!(key & QGL__K_DISCARD), (key >> QGL__K_CORNER_SHIFT) & 3);
-    const char *in = io[stage][0], *out = io[stage][1];
-    if (stage == 0)
-        len += snprintf(buf + len, n - len, "#if COLOR\nout vec4 q_col;\n#endif\n#if TEX\nout vec4 q_tex;\n#endif\n");
-    if (stage >= 1) {
-        const char *dir = stage == 1 ? out : in;
-        len += snprintf(buf + len, n - len,
-                        "%s vec2 g0, g1, g2, g3;\n"
-                        "#if COLOR && FLAT\nflat %s vec4 f_flat;\n#elif COLOR\nflat %s mat4 f_col;\n#endif\n"
-                        "#if TEX\nflat %s mat4 f_tex;\n#endif\n"
-                        "#if DEPTH\nflat %s vec4 f_w, f_z;\n#endif\n",
-                        dir, dir, dir, dir, dir);
+    put(b, "    vec4 tc%d = f_tex%d * lam;\n", u, u);
+    switch (k->unit[u].target) {
+    case QGL__T_1D: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d.xw);\n", u, u, u); break;
+    case QGL__T_3D: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d);\n", u, u, u); break;
+    case QGL__T_CUBE: put(b, "    vec4 tx%d = texture(u_tex%d, tc%d.xyz);\n", u, u, u); break;
+    default: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d.xyw);\n", u, u, u); break;
     }
 }
 
-static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, int stage, const char *body)
+/* A COMBINE source as a vec4 expression. */
+static void src_expr(char *out, size_t n, int u, int src)
+{
+    switch (src) {
+    case QGL__S_TEXTURE: snprintf(out, n, "tx%d", u); break;
+    case QGL__S_CONSTANT: snprintf(out, n, "gl_TextureEnvColor[%d]", u); break;
+    case QGL__S_PRIMARY: snprintf(out, n, "pri"); break;
+    case QGL__S_PREVIOUS: snprintf(out, n, "col"); break;
+    default: snprintf(out, n, "tx%d", src - QGL__S_UNIT0); break;
+    }
+}
+
+static int nargs(int func)
+{
+    if (func == QGL__C_REPLACE)
+        return 1;
+    return func == QGL__C_INTERPOLATE ? 3 : 2;
+}
+
+static void fs_combine_func(sb *b, int func, const char *t, const char *res)
+{
+    switch (func) {
+    case QGL__C_REPLACE: put(b, "        %s = %s0;\n", res, t); break;
+    case QGL__C_MODULATE: put(b, "        %s = %s0 * %s1;\n", res, t, t); break;
+    case QGL__C_ADD: put(b, "        %s = %s0 + %s1;\n", res, t, t); break;
+    case QGL__C_ADD_SIGNED: put(b, "        %s = %s0 + %s1 - 0.5;\n", res, t, t); break;
+    case QGL__C_INTERPOLATE: put(b, "        %s = %s0 * %s2 + %s1 * (1.0 - %s2);\n", res, t, t, t, t); break;
+    case QGL__C_SUBTRACT: put(b, "        %s = %s0 - %s1;\n", res, t, t); break;
+    default: put(b, "        %s = vec3(4.0 * dot(%s0 - 0.5, %s1 - 0.5));\n", res, t, t); break;
+    }
+}
+
+static void fs_combine(sb *b, const qgl__unit_key *uk, int u)
+{
+    static const char *const op_rgb[] = {"%s.rgb", "(1.0 - %s.rgb)", "vec3(%s.a)", "vec3(1.0 - %s.a)"};
+    static const char *const op_a[] = {"%s.a", "(1.0 - %s.a)", "%s.a", "(1.0 - %s.a)"};
+    char src[64], expr[128];
+    int dot4 = uk->func_rgb == QGL__C_DOT3_RGBA;
+    put(b, "    {\n        vec3 rgb;\n        float a;\n");
+    for (int i = 0; i < nargs(uk->func_rgb); i++) {
+        src_expr(src, sizeof src, u, uk->src_rgb[i]);
+        snprintf(expr, sizeof expr, op_rgb[uk->op_rgb[i]], src);
+        put(b, "        vec3 c%d = %s;\n", i, expr);
+    }
+    fs_combine_func(b, uk->func_rgb, "c", "rgb");
+    if (dot4) {
+        put(b, "        a = rgb.r;\n");
+    } else {
+        for (int i = 0; i < nargs(uk->func_a); i++) {
+            src_expr(src, sizeof src, u, uk->src_a[i]);
+            snprintf(expr, sizeof expr, op_a[uk->op_a[i]], src);
+            put(b, "        float a%d = %s;\n", i, expr);
+        }
+        /* the alpha functions are the RGB ones on one component */
+        switch (uk->func_a) {
+        case QGL__C_REPLACE: put(b, "        a = a0;\n"); break;
+        case QGL__C_MODULATE: put(b, "        a = a0 * a1;\n"); break;
+        case QGL__C_ADD: put(b, "        a = a0 + a1;\n"); break;
+        case QGL__C_ADD_SIGNED: put(b, "        a = a0 + a1 - 0.5;\n"); break;
+        case QGL__C_INTERPOLATE: put(b, "        a = a0 * a2 + a1 * (1.0 - a2);\n"); break;
+        default: put(b, "        a = a0 - a1;\n"); break;
+        }
+    }
+    put(b, "        col = clamp(vec4(rgb * %d.0, a * %d.0), 0.0, 1.0);\n    }\n", 1 << uk->shift_rgb,
+        1 << (dot4 ? uk->shift_rgb : uk->shift_a));
+}
+
+/* One unit's texture environment: col (previous) := f(col, tx_u), per base format. */
+static void fs_env(sb *b, const qgl__unit_key *uk, int u)
+{
+    int fmt = uk->format;
+    if (uk->env == QGL__E_COMBINE) {
+        fs_combine(b, uk, u);
+        return;
+    }
+    if (fmt == QGL__F_ALPHA) { /* the colour passes; alpha is replaced or multiplied */
+        if (uk->env == QGL__E_REPLACE)
+            put(b, "    col.a = tx%d.a;\n", u);
+        else if (uk->env != QGL__E_DECAL)
+            put(b, "    col.a *= tx%d.a;\n", u);
+        return;
+    }
+    switch (uk->env) {
+    case QGL__E_REPLACE:
+        if (fmt == QGL__F_RGB)
+            put(b, "    col.rgb = tx%d.rgb;\n", u);
+        else
+            put(b, "    col = tx%d;\n", u);
+        break;
+    case QGL__E_MODULATE: put(b, "    col *= tx%d;\n", u); break;
+    case QGL__E_DECAL: put(b, "    col.rgb = mix(col.rgb, tx%d.rgb, tx%d.a);\n", u, u); break;
+    case QGL__E_BLEND:
+        put(b, "    col.rgb = mix(col.rgb, gl_TextureEnvColor[%d].rgb, tx%d.rgb);\n", u, u);
+        if (fmt == QGL__F_INTENSITY)
+            put(b, "    col.a = mix(col.a, gl_TextureEnvColor[%d].a, tx%d.a);\n", u, u);
+        else
+            put(b, "    col.a *= tx%d.a;\n", u);
+        break;
+    default: /* ADD */
+        put(b, "    col.rgb += tx%d.rgb;\n", u);
+        if (fmt == QGL__F_INTENSITY)
+            put(b, "    col.a += tx%d.a;\n", u);
+        else
+            put(b, "    col.a *= tx%d.a;\n", u);
+        break;
+    }
+    put(b, "    col = clamp(col, 0.0, 1.0);\n");
+}
+
+static void fs_fog(sb *b, const qgl__key *k)
+{
+    put(b, "    float fc = dot(f_fog, lam);\n");
+    switch (k->fog) {
+    case QGL__FOG_LINEAR: put(b, "    float ff = (gl_Fog.end - fc) * gl_Fog.scale;\n"); break;
+    case QGL__FOG_EXP: put(b, "    float ff = exp(-gl_Fog.density * fc);\n"); break;
+    default: put(b, "    float ff = exp(-(gl_Fog.density * fc) * (gl_Fog.density * fc));\n"); break;
+    }
+    put(b, "    col.rgb = mix(gl_Fog.color.rgb, col.rgb, clamp(ff, 0.0, 1.0));\n");
+}
+
+/* A colour at the fragment: the provoking corner's (flat) or interpolated. */
+static void fs_colour(sb *b, const qgl__key *k, const char *name, const char *front, const char *back)
+{
+    const char *fmt = k->flags & QGL__KF_FLAT ? "f_%s" : "(f_%s * lam)";
+    char f[32], bk[32];
+    snprintf(f, sizeof f, fmt, front);
+    if (!two_sided(k)) {
+        put(b, "    vec4 %s = %s;\n", name, f);
+        return;
+    }
+    snprintf(bk, sizeof bk, fmt, back);
+    put(b, "    vec4 %s = gl_FrontFacing ? %s : %s;\n", name, f, bk);
+}
+
+static void fs_source(sb *b, const qgl__key *k)
+{
+    put(b, "#version 150 compatibility\n");
+    varyings(b, k, "in");
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target)
+            put(b, "uniform %s u_tex%d;\n", sampler_type[k->unit[u].target], u);
+    put(b, "%s", fs_weights);
+    put(b, "void main() {\n    vec4 lam = weights();\n");
+    if (k->flags & QGL__KF_DISCARD)
+        put(b, "    if (any(lessThan(lam, vec4(0.0)))) discard;\n");
+    if (frag_clip(k)) {
+        put(b, "    vec4 eye = f_eye * lam;\n");
+        for (int p = 0; p < 8; p++)
+            if ((k->clip >> p) & 1)
+                put(b, "    if (dot(gl_ClipPlane[%d], eye) < 0.0) discard;\n", p);
+    }
+    fs_colour(b, k, "pri", "pri", "bpri");
+    if (has_secondary(k))
+        fs_colour(b, k, "sec", "sec", "bsec");
+    put(b, "    vec4 col = pri;\n");
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target)
+            fs_texel(b, k, u);
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target)
+            fs_env(b, &k->unit[u], u);
+    if (has_secondary(k))
+        put(b, "    col.rgb = clamp(col.rgb + sec.rgb, 0.0, 1.0);\n");
+    if (k->fog)
+        fs_fog(b, k);
+    put(b, "    gl_FragColor = col;\n");
+    if (k->flags & QGL__KF_DEPTH)
+        put(b, "    vec4 scr = f_w * lam;\n    gl_FragDepth = dot(scr, f_z) / dot(scr, vec4(1.0));\n");
+    put(b, "}\n");
+}
+
+/* ---- compiling and caching ------------------------------------------------------------------- */
+
+static void warn(const qgl__key *k, uint32_t hash, const char *what, const char *log)
+{
+    fprintf(stderr, "quadgl: warning: shader path program (key %08x) %s; its quads take the CPU fallback\n", hash,
+            what);
+    if (getenv("QUADGL_DEBUG"))
+        fprintf(stderr, "%s\n(key: %zu bytes, %d varying slots)\n", log, sizeof *k, qgl__key_slots(k));
+}
+
+static GLuint compile(qgl_context *ctx, GLenum type, const char *src, const qgl__key *k, uint32_t hash)
 {
     struct qgl__gl *gl = &ctx->gl;
-    char head[1024];
-    header(head, sizeof head, key, stage);
-    const char *src[2] = {head, body};
     GLuint sh = gl->CreateShader(type);
-    gl->ShaderSource(sh, 2, src, NULL);
+    gl->ShaderSource(sh, 1, &src, NULL);
     gl->CompileShader(sh);
     GLint ok = 0;
     gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[2048];
+        char log[4096];
         gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
         if (getenv("QUADGL_DEBUG"))
-            fprintf(stderr, "quadgl: shader (key %#x, stage %d) failed:\n%s\n", key, stage, log);
+            fprintf(stderr, "%s\n", src);
+        warn(k, hash, "did not compile", log);
         gl->DeleteShader(sh);
         return 0;
     }
     return sh;
 }
 
-static GLuint build(qgl_context *ctx, unsigned key)
+static int link(qgl_context *ctx, GLuint prog, const qgl__key *k, uint32_t hash)
 {
     struct qgl__gl *gl = &ctx->gl;
-    GLuint vs = compile(ctx, GL_VERTEX_SHADER, key, 0, vs_src);
-    GLuint gs = compile(ctx, GL_GEOMETRY_SHADER, key, 1, gs_src);
-    GLuint fs = compile(ctx, GL_FRAGMENT_SHADER, key, 2, fs_src);
-    GLuint prog = 0;
-    if (vs && gs && fs) {
+    if (lit(k) && (k->flags & QGL__KF_MATERIAL) && gl->BindAttribLocation)
+        for (int i = 0; i < QGL__NMATERIAL; i++)
+            gl->BindAttribLocation(prog, QGL__LOC_MATERIAL + (GLuint)i, material_names[i]);
+    gl->LinkProgram(prog);
+    GLint ok = 0;
+    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
+        warn(k, hash, "did not link", log);
+    }
+    return ok;
+}
+
+/* Each sampler reads its own unit. */
+static void bind_samplers(qgl_context *ctx, GLuint prog, const qgl__key *k)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    GLint cur = 0;
+    gl->GetIntegerv(GL_CURRENT_PROGRAM, &cur);
+    gl->UseProgram(prog);
+    for (int u = 0; u < k->nunits; u++)
+        if (k->unit[u].target) {
+            char name[16];
+            snprintf(name, sizeof name, "u_tex%d", u);
+            gl->Uniform1i(gl->GetUniformLocation(prog, name), u);
+        }
+    gl->UseProgram((GLuint)cur);
+}
+
+static GLuint build(qgl_context *ctx, const qgl__key *k, uint32_t hash)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    sb src[3] = {{0}};
+    vs_source(&src[0], k);
+    gs_source(&src[1], k);
+    fs_source(&src[2], k);
+    static const GLenum types[3] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
+    GLuint sh[3] = {0}, prog = 0;
+    int ok = !src[0].oom && !src[1].oom && !src[2].oom;
+    for (int i = 0; i < 3 && ok; i++)
+        ok = (sh[i] = compile(ctx, types[i], src[i].p, k, hash)) != 0;
+    if (ok) {
         prog = gl->CreateProgram();
-        gl->AttachShader(prog, vs);
-        gl->AttachShader(prog, gs);
-        gl->AttachShader(prog, fs);
-        gl->LinkProgram(prog);
-        GLint ok = 0;
-        gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-        if (!ok) {
-            char log[2048];
-            gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
-            if (getenv("QUADGL_DEBUG"))
-                fprintf(stderr, "quadgl: link (key %#x) failed:\n%s\n", key, log);
+        for (int i = 0; i < 3; i++)
+            gl->AttachShader(prog, sh[i]);
+        if (!link(ctx, prog, k, hash)) {
             gl->DeleteProgram(prog);
             prog = 0;
         }
     }
-    if (vs)
-        gl->DeleteShader(vs);
-    if (gs)
-        gl->DeleteShader(gs);
-    if (fs)
-        gl->DeleteShader(fs);
-    if (prog && (key & QGL__K_TEX)) { /* the sampler reads unit 0 */
-        GLint cur = 0;
-        gl->GetIntegerv(GL_CURRENT_PROGRAM, &cur);
-        gl->UseProgram(prog);
-        gl->Uniform1i(gl->GetUniformLocation(prog, "u_tex"), 0);
-        gl->UseProgram((GLuint)cur);
+    for (int i = 0; i < 3; i++) {
+        if (sh[i])
+            gl->DeleteShader(sh[i]);
+        free(src[i].p);
     }
+    if (prog)
+        bind_samplers(ctx, prog, k);
     return prog;
 }
 
-/* The program for key, built on first use; 0 when it cannot be built. */
-GLuint qgl__program(qgl_context *ctx, unsigned key)
+/* FNV-1a over the key's bytes (the key has no padding holes: every byte is set). */
+static uint32_t hash_key(const qgl__key *k)
 {
+    const unsigned char *p = (const unsigned char *)k;
+    uint32_t h = 2166136261u;
+    for (size_t i = 0; i < sizeof *k; i++)
+        h = (h ^ p[i]) * 16777619u;
+    return h;
+}
+
+GLuint qgl__program(qgl_context *ctx, const qgl__key *key)
+{
+    qgl__key plain;
+    if (!key) {
+        memset(&plain, 0, sizeof plain);
+        key = &plain;
+    }
+    uint32_t h = hash_key(key);
     for (int i = 0; i < ctx->nprograms; i++)
-        if (ctx->programs[i].key == key)
+        if (ctx->programs[i].hash == h && !memcmp(&ctx->programs[i].key, key, sizeof *key))
             return ctx->programs[i].prog;
-    GLuint prog = build(ctx, key);
-    if (!prog)
-        return 0;
-    int slot = ctx->nprograms < QGL__MAX_PROGRAMS ? ctx->nprograms++ : (int)(key % QGL__MAX_PROGRAMS);
-    if (slot < ctx->nprograms - 1 || ctx->programs[slot].prog) /* full: evict */
-        ctx->gl.DeleteProgram(ctx->programs[slot].prog);
-    ctx->programs[slot].key = key;
+    GLuint prog = build(ctx, key, h);
+    int slot;
+    if (ctx->nprograms < QGL__MAX_PROGRAMS) {
+        slot = ctx->nprograms++;
+    } else { /* full: evict in rotation */
+        slot = ctx->next_evict;
+        ctx->next_evict = (ctx->next_evict + 1) % QGL__MAX_PROGRAMS;
+        if (ctx->programs[slot].prog)
+            ctx->gl.DeleteProgram(ctx->programs[slot].prog);
+    }
+    ctx->programs[slot].hash = h;
+    ctx->programs[slot].key = *key;
     ctx->programs[slot].prog = prog;
+    ctx->programs[slot].failed = !prog;
     return prog;
 }
 
 void qgl__programs_free(qgl_context *ctx)
 {
     for (int i = 0; i < ctx->nprograms; i++)
-        ctx->gl.DeleteProgram(ctx->programs[i].prog);
+        if (ctx->programs[i].prog)
+            ctx->gl.DeleteProgram(ctx->programs[i].prog);
     ctx->nprograms = 0;
+    ctx->next_evict = 0;
 }

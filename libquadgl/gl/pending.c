@@ -1,0 +1,132 @@
+/* pending.c: consecutive quad primitives gathered into one draw, for owners that see every GL call.
+ *
+ * With qgl_gl_desc.assume_exclusive the owner of the context promises to call qgl_gl_flush
+ * before any GL call that does not go through this layer. Nothing can then change the GL
+ * state between two qgl primitives without a flush, so a finished primitive (qglEnd,
+ * qgl_draw_quads) need not be drawn at once: it is appended to one pending batch of GL_QUADS,
+ * and a run of primitives costs one state query, one upload and one draw instead of one each
+ * (rlgl's batching; a mesh drawn as 64 strips is the case it is for). Strips are unrolled into
+ * quads whose corner order keeps the quad's provoking vertex (the MVC picture does not depend
+ * on the corner order). An attribute that some primitives give and others do not is filled,
+ * for the others, with the driver's current value at the time they were finished, which is
+ * what the driver would have used for them. A primitive that could draw differently once
+ * unrolled is drawn at once after a flush: method SPLIT (the driver's own strip split was
+ * asked for) and edge flags (strips ignore them). Every qgl* call that reaches the driver
+ * flushes first (qgl__flush), so the driver sees the same sequence as without batching. */
+#include <string.h>
+
+#include "gl_internal.h"
+
+/* Beyond this many pending vertices a primitive flushes first: bounds the memory held. */
+#define PENDING_MAX ((size_t)1 << 21)
+
+/* Attribute bit of v at vertex i to the value val (the layout of the qgl__verts arrays). */
+static void set_attr(qgl__verts *v, size_t i, unsigned bit, const float val[4])
+{
+    switch (bit) {
+    case QGL__A_COLOR: memcpy(v->col + 4 * i, val, 4 * sizeof(float)); break;
+    case QGL__A_NORMAL: memcpy(v->nrm + 3 * i, val, 3 * sizeof(float)); break;
+    case QGL__A_COLOR2: memcpy(v->col2 + 3 * i, val, 3 * sizeof(float)); break;
+    case QGL__A_FOG: v->fog[i] = val[0]; break;
+    default:
+        for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+            if (bit == (unsigned)QGL__A_TEX0 << u)
+                memcpy(v->tex[u] + 4 * i, val, 4 * sizeof(float));
+    }
+}
+
+/* Vertices [from, to) of v get the driver's current value of every attribute in bits. */
+static void fill_current(qgl_context *ctx, qgl__verts *v, size_t from, size_t to, unsigned bits)
+{
+    for (unsigned bit = 1; bits; bit <<= 1) {
+        if (!(bits & bit))
+            continue;
+        bits &= ~bit;
+        float cur[4];
+        qgl__driver_current(ctx, bit, cur);
+        for (size_t i = from; i < to; i++)
+            set_attr(v, i, bit, cur);
+    }
+}
+
+static void copy_vertex(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
+{
+    unsigned m = s->mask;
+    memcpy(d->pos + 4 * i, s->pos + 4 * j, 4 * sizeof(float));
+    if (m & QGL__A_COLOR)
+        memcpy(d->col + 4 * i, s->col + 4 * j, 4 * sizeof(float));
+    if (m & QGL__A_NORMAL)
+        memcpy(d->nrm + 3 * i, s->nrm + 3 * j, 3 * sizeof(float));
+    if (m & QGL__A_COLOR2)
+        memcpy(d->col2 + 3 * i, s->col2 + 3 * j, 3 * sizeof(float));
+    if (m & QGL__A_FOG)
+        d->fog[i] = s->fog[j];
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (m & (QGL__A_TEX0 << u))
+            memcpy(d->tex[u] + 4 * i, s->tex[u] + 4 * j, 4 * sizeof(float));
+}
+
+/* Append the nq quads of v to the pending batch. GL_QUADS keep their order; strip quad k
+ * (corners v2k, v2k+1, v2k+3, v2k+2) starts at the corner that puts its provoking vertex
+ * where a GL_QUADS quad has it: v2k+3 last under the last-vertex convention, v2k first under
+ * the first-vertex one. */
+static int append(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size_t nq)
+{
+    qgl__verts *p = &ctx->pend;
+    size_t n0 = p->n;
+    if (!qgl__verts_reserve(p, n0 + 4 * nq, p->mask | v->mask))
+        return 0;
+    fill_current(ctx, p, 0, n0, v->mask & ~p->mask & ~(unsigned)QGL__A_EDGE);
+    int shift = topo == QGL_QUAD_STRIP && qgl__flat_corner(ctx, topo) == 2 ? 3 : 0;
+    for (size_t q = 0; q < nq; q++)
+        for (int c = 0; c < 4; c++)
+            copy_vertex(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
+    p->n = n0 + 4 * nq;
+    fill_current(ctx, p, n0, p->n, p->mask & ~v->mask);
+    p->mask |= v->mask;
+    return 1;
+}
+
+int qgl__submit(qgl_context *ctx, qgl__verts *v, qgl_topology topo)
+{
+    size_t nq = qgl__nquads(topo, v->n);
+    if (!nq)
+        return 0;
+    int defer = ctx->exclusive && ctx->method != QGL_METHOD_SPLIT && !(v->mask & QGL__A_EDGE);
+    if (!defer || ctx->pend.n + 4 * nq > PENDING_MAX)
+        qgl__flush(ctx);
+    if (!defer)
+        return qgl__draw(ctx, v, topo);
+    if (!ctx->pend.n && topo == QGL_QUADS && v == &ctx->cap) {
+        /* the first primitive of a batch: take the capture's arrays instead of copying */
+        qgl__verts t = ctx->pend;
+        ctx->pend = *v;
+        ctx->pend.n = 4 * nq;
+        *v = t;
+        v->n = 0;
+        return (int)nq;
+    }
+    if (append(ctx, v, topo, nq))
+        return (int)nq;
+    qgl__flush(ctx); /* out of memory for the batch: draw what waits, then this one */
+    return qgl__draw(ctx, v, topo);
+}
+
+void qgl__flush_pending(qgl_context *ctx)
+{
+    qgl__verts *p = &ctx->pend;
+    size_t n = p->n;
+    p->n = 0; /* first: the draw must not find a batch pending */
+    if (n) {
+        qgl__verts batch = *p;
+        batch.n = n;
+        qgl__draw(ctx, &batch, QGL_QUADS);
+    }
+    p->mask = 0;
+}
+
+QGL_API void qgl_gl_flush(qgl_context *ctx)
+{
+    if (ctx)
+        qgl__flush(ctx);
+}

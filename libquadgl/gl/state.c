@@ -1,0 +1,370 @@
+/* state.c: read the application's GL state at a draw and reduce it to the program key.
+ *
+ * Everything that decides how a quad may be drawn is read here, once per batch: matrices,
+ * viewport, shade model, render and polygon modes, and the fixed-function features the
+ * generated programs reproduce (lighting with its lights' kinds, colour material, light model,
+ * normal scaling, every texture unit's target, texgen modes, environment with its COMBINE
+ * state and the texture's base format, fog, colour sum, clip planes). The result is the key
+ * of shader.c, with every field that cannot change the picture left zero so that equal
+ * pictures share a program. A state the programs do not reproduce (an application program,
+ * ARB programs, an env mode or COMBINE source outside GL 1.4's, a depth texture, units past
+ * QGL_MAX_TEXUNITS, too many varyings) clears "modelled" and its quads take the CPU fallback.
+ * The planner also learns whether the per-vertex results are affine in the captured
+ * attributes (unlit or flat, linear texgen only): only then can the diagonal split be exact.
+ * Parameters (light colours, planes, fog distances...) are not read: the programs take them
+ * from the built-in uniforms, which the driver keeps current. Queries never raise a GL error
+ * (only enums of the context's version are asked) and the active texture unit is put back. */
+#include <string.h>
+
+#include "gl_internal.h"
+
+static void mat_mul(const double a[16], const double b[16], double r[16])
+{
+    for (int c = 0; c < 4; c++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a[k * 4 + row] * b[c * 4 + k];
+            r[c * 4 + row] = s;
+        }
+}
+
+/* Texture targets in fixed function's priority order (cube map first), with the GL version
+ * that has them: querying an unknown one is an error the application would see. */
+static const struct { GLenum target; int version; uint8_t code; } tex_targets[] = {
+    {GL_TEXTURE_CUBE_MAP, 13, QGL__T_CUBE}, {GL_TEXTURE_3D, 12, QGL__T_3D},
+    {GL_TEXTURE_RECTANGLE, 31, QGL__T_RECT}, {GL_TEXTURE_2D, 10, QGL__T_2D}, {GL_TEXTURE_1D, 10, QGL__T_1D}};
+#define NTARGETS (sizeof tex_targets / sizeof tex_targets[0])
+
+/* The enabled target of the active unit with the highest priority (0: none). */
+static int unit_target(qgl_context *ctx, GLenum *target)
+{
+    for (size_t t = 0; t < NTARGETS; t++)
+        if (ctx->version >= tex_targets[t].version && ctx->gl.IsEnabled(tex_targets[t].target)) {
+            *target = tex_targets[t].target;
+            return tex_targets[t].code;
+        }
+    return QGL__T_NONE;
+}
+
+/* Base-format class of the bound texture's level 0; 0 for a depth texture (compared, or
+ * read as luminance/intensity/alpha by a mode we do not model). */
+static int base_format(qgl_context *ctx, GLenum target, uint8_t *fmt)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    GLenum level_target = target == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X : target;
+    GLint alpha = 0, red = 0, lum = 0, inten = 0, depth = 0;
+    gl->GetTexLevelParameteriv(level_target, 0, GL_TEXTURE_ALPHA_SIZE, &alpha);
+    gl->GetTexLevelParameteriv(level_target, 0, GL_TEXTURE_RED_SIZE, &red);
+    gl->GetTexLevelParameteriv(level_target, 0, GL_TEXTURE_LUMINANCE_SIZE, &lum);
+    gl->GetTexLevelParameteriv(level_target, 0, GL_TEXTURE_INTENSITY_SIZE, &inten);
+    if (ctx->version >= 14)
+        gl->GetTexLevelParameteriv(level_target, 0, GL_TEXTURE_DEPTH_SIZE, &depth);
+    if (depth > 0)
+        return 0;
+    if (inten > 0)
+        *fmt = QGL__F_INTENSITY;
+    else if (alpha > 0 && red == 0 && lum == 0)
+        *fmt = QGL__F_ALPHA;
+    else
+        *fmt = alpha > 0 ? QGL__F_RGBA : QGL__F_RGB;
+    return 1;
+}
+
+static int find(const GLint *list, int n, GLint value)
+{
+    for (int i = 0; i < n; i++)
+        if (list[i] == value)
+            return i;
+    return -1;
+}
+
+static int combine_func(GLint f, int rgb)
+{
+    static const GLint funcs[] = {GL_REPLACE, GL_MODULATE, GL_ADD, GL_ADD_SIGNED, GL_INTERPOLATE,
+                                  GL_SUBTRACT, GL_DOT3_RGB, GL_DOT3_RGBA};
+    return find(funcs, rgb ? 8 : 6, f);
+}
+
+static int combine_source(GLint s, int max_units)
+{
+    static const GLint srcs[] = {GL_TEXTURE, GL_CONSTANT, GL_PRIMARY_COLOR, GL_PREVIOUS};
+    int i = find(srcs, 4, s);
+    if (i >= 0)
+        return i;
+    if (s >= GL_TEXTURE0 && s < GL_TEXTURE0 + max_units && s < GL_TEXTURE0 + QGL_MAX_TEXUNITS)
+        return QGL__S_UNIT0 + (s - GL_TEXTURE0);
+    return -1;
+}
+
+static int scale_shift(GLint s)
+{
+    return s == 1 ? 0 : s == 2 ? 1 : s == 4 ? 2 : -1;
+}
+
+/* COMBINE state of the active unit; only the arguments its functions read. */
+static int query_combine(qgl_context *ctx, qgl__unit_key *uk)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    static const GLint ops[] = {GL_SRC_COLOR, GL_ONE_MINUS_SRC_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA};
+    GLint frgb = 0, fa = 0, srgb = 1, sa = 1;
+    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_COMBINE_RGB, &frgb);
+    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_COMBINE_ALPHA, &fa);
+    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_RGB_SCALE, &srgb);
+    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_ALPHA_SCALE, &sa);
+    int f0 = combine_func(frgb, 1), f1 = combine_func(fa, 0), s0 = scale_shift(srgb), s1 = scale_shift(sa);
+    if (f0 < 0 || f1 < 0 || s0 < 0 || s1 < 0)
+        return 0;
+    int dot4 = f0 == QGL__C_DOT3_RGBA;
+    uk->func_rgb = (uint8_t)f0;
+    uk->func_a = dot4 ? 0 : (uint8_t)f1;
+    uk->shift_rgb = (uint8_t)s0;
+    uk->shift_a = dot4 ? 0 : (uint8_t)s1;
+    int nrgb = f0 == QGL__C_REPLACE ? 1 : f0 == QGL__C_INTERPOLATE ? 3 : 2;
+    int na = dot4 ? 0 : f1 == QGL__C_REPLACE ? 1 : f1 == QGL__C_INTERPOLATE ? 3 : 2;
+    for (int i = 0; i < 3; i++) {
+        GLint s = 0, o = 0;
+        if (i < nrgb) {
+            gl->GetTexEnviv(GL_TEXTURE_ENV, GL_SRC0_RGB + i, &s);
+            gl->GetTexEnviv(GL_TEXTURE_ENV, GL_OPERAND0_RGB + i, &o);
+            int src = combine_source(s, ctx->max_units), op = find(ops, 4, o);
+            if (src < 0 || op < 0)
+                return 0;
+            uk->src_rgb[i] = (uint8_t)src, uk->op_rgb[i] = (uint8_t)op;
+        }
+        if (i < na) {
+            gl->GetTexEnviv(GL_TEXTURE_ENV, GL_SRC0_ALPHA + i, &s);
+            gl->GetTexEnviv(GL_TEXTURE_ENV, GL_OPERAND0_ALPHA + i, &o);
+            int src = combine_source(s, ctx->max_units), op = find(ops + 2, 2, o);
+            if (src < 0 || op < 0)
+                return 0;
+            uk->src_a[i] = (uint8_t)src, uk->op_a[i] = (uint8_t)(op + 2);
+        }
+    }
+    return 1;
+}
+
+static int query_texgen(qgl_context *ctx, qgl__unit_key *uk)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    static const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
+    static const GLint modes[] = {0, GL_OBJECT_LINEAR, GL_EYE_LINEAR, GL_SPHERE_MAP, GL_REFLECTION_MAP, GL_NORMAL_MAP};
+    for (int c = 0; c < 4; c++) {
+        if (!gl->IsEnabled(GL_TEXTURE_GEN_S + (GLenum)c))
+            continue;
+        GLint mode = 0;
+        gl->GetTexGeniv(coords[c], GL_TEXTURE_GEN_MODE, &mode);
+        int m = find(modes, ctx->version >= 13 ? 6 : 4, mode);
+        if (m <= 0 || (m == QGL__G_SPHERE && c >= 2))
+            return 0;
+        uk->gen[c] = (uint8_t)m;
+    }
+    return 1;
+}
+
+/* The active unit u (target already known): env, format, texgen, matrix. */
+static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qgl__unit_key *uk)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    static const GLint envs[] = {GL_MODULATE, GL_REPLACE, GL_DECAL, GL_BLEND, GL_ADD, GL_COMBINE};
+    GLint env = GL_MODULATE;
+    gl->GetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &env);
+    int e = find(envs, 6, env);
+    if (e < 0)
+        return 0;
+    uk->env = (uint8_t)e;
+    if (e == QGL__E_COMBINE) {
+        uint8_t ignored;
+        if (!query_combine(ctx, uk) || !base_format(ctx, target, &ignored))
+            return 0;
+    } else if (!base_format(ctx, target, &uk->format)) {
+        return 0;
+    }
+    gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
+    return query_texgen(ctx, uk);
+}
+
+/* Every unit; 0 when one is beyond what the programs reproduce. */
+static int query_textures(qgl_context *ctx, qgl__state *st, qgl__key *k)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    int ok = 1;
+    for (GLint u = 0; u < ctx->max_units; u++) {
+        if (u > 0 || st->active_texture != GL_TEXTURE0)
+            gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        GLenum target = 0;
+        int code = unit_target(ctx, &target);
+        if (!code)
+            continue;
+        if (u >= QGL_MAX_TEXUNITS) {
+            ok = 0;
+            continue;
+        }
+        k->unit[u].target = (uint8_t)code;
+        k->nunits = (uint8_t)(u + 1);
+        ok &= query_unit(ctx, st, u, target, &k->unit[u]);
+    }
+    if (ctx->max_units > 1 || st->active_texture != GL_TEXTURE0)
+        gl->ActiveTexture((GLenum)st->active_texture);
+    /* a COMBINE argument reading another unit needs that unit enabled */
+    for (int u = 0; u < k->nunits; u++)
+        for (int i = 0; i < 3; i++) {
+            int s = k->unit[u].src_rgb[i] > k->unit[u].src_a[i] ? k->unit[u].src_rgb[i] : k->unit[u].src_a[i];
+            if (s >= QGL__S_UNIT0 && !k->unit[s - QGL__S_UNIT0].target)
+                ok = 0;
+        }
+    return ok;
+}
+
+static void query_lighting(qgl_context *ctx, qgl__key *k)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    k->flags |= QGL__KF_LIGHTING;
+    for (int i = 0; i < 8; i++) {
+        if (!gl->IsEnabled(GL_LIGHT0 + (GLenum)i))
+            continue;
+        GLfloat pos[4] = {0}, cutoff = 180;
+        gl->GetLightfv(GL_LIGHT0 + (GLenum)i, GL_POSITION, pos);
+        gl->GetLightfv(GL_LIGHT0 + (GLenum)i, GL_SPOT_CUTOFF, &cutoff);
+        k->lights |= (uint8_t)(1u << i);
+        if (pos[3] != 0)
+            k->light_pos |= (uint8_t)(1u << i);
+        if (pos[3] != 0 && cutoff != 180) /* directional lights ignore spot parameters */
+            k->light_spot |= (uint8_t)(1u << i);
+    }
+    GLint two = 0, local = 0, control = GL_SINGLE_COLOR;
+    gl->GetIntegerv(GL_LIGHT_MODEL_TWO_SIDE, &two);
+    gl->GetIntegerv(GL_LIGHT_MODEL_LOCAL_VIEWER, &local);
+    if (ctx->version >= 12)
+        gl->GetIntegerv(GL_LIGHT_MODEL_COLOR_CONTROL, &control);
+    k->flags |= (two ? QGL__KF_TWO_SIDE : 0) | (local ? QGL__KF_LOCAL_VIEWER : 0) |
+                (control == GL_SEPARATE_SPECULAR_COLOR ? QGL__KF_SEPARATE_SPEC : 0);
+    if (gl->IsEnabled(GL_COLOR_MATERIAL)) {
+        static const GLint faces[] = {0, GL_FRONT, GL_BACK, GL_FRONT_AND_BACK};
+        static const GLint modes[] = {0, GL_EMISSION, GL_AMBIENT, GL_DIFFUSE, GL_SPECULAR, GL_AMBIENT_AND_DIFFUSE};
+        GLint face = GL_FRONT_AND_BACK, mode = GL_AMBIENT_AND_DIFFUSE;
+        gl->GetIntegerv(GL_COLOR_MATERIAL_FACE, &face);
+        gl->GetIntegerv(GL_COLOR_MATERIAL_PARAMETER, &mode);
+        int f = find(faces, 4, face), m = find(modes, 6, mode);
+        k->cm_face = (uint8_t)(f > 0 ? f : 0);
+        k->cm_mode = (uint8_t)(m > 0 && f > 0 ? m : 0);
+        if (!two) /* the back material is never used */
+            k->cm_face &= 1;
+        if (!k->cm_face)
+            k->cm_mode = 0;
+    }
+}
+
+static void query_fog(qgl_context *ctx, qgl__key *k)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    static const GLint modes[] = {0, GL_LINEAR, GL_EXP, GL_EXP2};
+    GLint mode = GL_EXP, src = GL_FRAGMENT_DEPTH;
+    gl->GetIntegerv(GL_FOG_MODE, &mode);
+    if (ctx->version >= 14)
+        gl->GetIntegerv(GL_FOG_COORD_SRC, &src);
+    int m = find(modes, 4, mode);
+    k->fog = (uint8_t)(m > 0 ? m : QGL__FOG_EXP);
+    if (src != GL_FOG_COORD)
+        k->flags |= QGL__KF_FOG_DEPTH;
+}
+
+/* Lighting or a normal-based texgen reads the normal; only then do its scalings matter. */
+static int reads_normal(const qgl__key *k)
+{
+    if (k->flags & QGL__KF_LIGHTING)
+        return 1;
+    for (int u = 0; u < k->nunits; u++)
+        for (int c = 0; c < 4; c++)
+            if (k->unit[u].gen[c] >= QGL__G_SPHERE)
+                return 1;
+    return 0;
+}
+
+/* Per-vertex results not affine in the captured attributes. */
+static int nonaffine(const qgl__state *st)
+{
+    const qgl__key *k = &st->ffp;
+    if ((k->flags & QGL__KF_LIGHTING) && st->shade_model != GL_FLAT)
+        return 1;
+    for (int u = 0; u < k->nunits; u++)
+        for (int c = 0; c < 4; c++)
+            if (k->unit[u].gen[c] >= QGL__G_SPHERE)
+                return 1;
+    return 0;
+}
+
+/* Issue 4's subset (what the GLSL 1.20 path implements). */
+static int simple(const qgl__key *k)
+{
+    if (k->flags || k->fog || k->clip || k->nunits > 1)
+        return 0;
+    const qgl__unit_key *u = &k->unit[0];
+    return !u->target || (u->target == QGL__T_2D && (u->env == QGL__E_MODULATE || u->env == QGL__E_REPLACE) &&
+                          u->format != QGL__F_ALPHA && !u->gen[0] && !u->gen[1] && !u->gen[2] && !u->gen[3]);
+}
+
+/* Fixed-function features and the key; returns 0 when the programs cannot reproduce them. */
+static int query_ffp(qgl_context *ctx, qgl__state *st)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    qgl__key *k = &st->ffp;
+    int ok = query_textures(ctx, st, k);
+    if (gl->IsEnabled(GL_LIGHTING))
+        query_lighting(ctx, k);
+    else if (ctx->version >= 14 && gl->IsEnabled(GL_COLOR_SUM))
+        k->flags |= QGL__KF_COLOR_SUM;
+    if (reads_normal(k)) {
+        if (gl->IsEnabled(GL_NORMALIZE))
+            k->flags |= QGL__KF_NORMALIZE;
+        else if (ctx->version >= 12 && gl->IsEnabled(GL_RESCALE_NORMAL))
+            k->flags |= QGL__KF_RESCALE;
+    }
+    if (gl->IsEnabled(GL_FOG))
+        query_fog(ctx, k);
+    for (GLint i = 0; i < ctx->max_clip_planes; i++)
+        if (gl->IsEnabled(GL_CLIP_PLANE0 + (GLenum)i)) {
+            if (i >= 8)
+                ok = 0;
+            else
+                k->clip |= (uint8_t)(1u << i);
+        }
+    if (ctx->has_arb_programs && (gl->IsEnabled(GL_VERTEX_PROGRAM_ARB) || gl->IsEnabled(GL_FRAGMENT_PROGRAM_ARB)))
+        ok = 0;
+    /* the worst case of this state's programs (smooth, non-planar) must fit the varyings */
+    qgl__key worst = *k;
+    worst.flags |= QGL__KF_DEPTH;
+    if (qgl__key_slots(&worst) > 30)
+        ok = 0;
+    return ok;
+}
+
+void qgl__query_state(qgl_context *ctx, qgl__state *st)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    double mv[16], pr[16];
+    memset(st, 0, sizeof *st);
+    gl->GetIntegerv(GL_RENDER_MODE, &st->render_mode);
+    gl->GetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
+    if (ctx->version >= 20)
+        gl->GetIntegerv(GL_CURRENT_PROGRAM, &st->program);
+    gl->GetIntegerv(GL_SHADE_MODEL, &st->shade_model);
+    gl->GetIntegerv(GL_VIEWPORT, st->viewport);
+    gl->GetIntegerv(GL_ACTIVE_TEXTURE, &st->active_texture);
+    gl->GetDoublev(GL_MODELVIEW_MATRIX, mv);
+    gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
+    mat_mul(pr, mv, st->mvp);
+    st->polygon_offset = gl->IsEnabled(GL_POLYGON_OFFSET_FILL);
+    int ffp = query_ffp(ctx, st);
+    const qgl__unit_key *u0 = &st->ffp.unit[0];
+    st->texture2d = u0->target == QGL__T_2D;
+    st->tex_replace = u0->env == QGL__E_REPLACE;
+    st->tex_no_alpha = u0->format == QGL__F_RGB;
+    st->simple = simple(&st->ffp);
+    GLboolean clamp = GL_TRUE;
+    if (ctx->shader_level && ctx->version >= 30) /* GL 3.0 state; GL 2.x always clamps */
+        gl->GetBooleanv(GL_CLAMP_VERTEX_COLOR, &clamp);
+    st->modelled = ctx->shader_level && ffp && st->program == 0 && clamp &&
+                   (ctx->shader_level == 150 || st->simple);
+    st->nonaffine = st->program != 0 || !ffp || nonaffine(st); /* unknown work: assume the worst */
+}

@@ -1,0 +1,117 @@
+/* control.c: the preload library's settings, its log and the statistics line at exit.
+ *
+ * Settings come from the environment once, in the library constructor, which does nothing
+ * else (no GL is touched before the program makes a context current): QUADGL_METHOD
+ * (auto | mvc | split | subdiv | off, and replay: capture, then hand the quads back to the
+ * driver unchanged, a check of the capture itself), QUADGL_STATS=1, QUADGL_LOG (warn | info
+ * | debug) and QUADGL_TOLERANCE (pixels). They are read with secure_getenv, so a setuid
+ * program ignores them. With QUADGL_STATS an atexit handler prints one line to stderr that
+ * adds up every context's counters, live or destroyed. */
+#include "preload.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+pl_config pl_cfg = {.capture = 1, .method = 0, .log_level = PL_LOG_WARN};
+
+static uint64_t pl_passthrough_quads;
+
+void pl_log(int level, const char *fmt, ...)
+{
+    va_list ap;
+    if (level > pl_cfg.log_level)
+        return;
+    va_start(ap, fmt);
+    fputs("quadgl: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+void pl_count_passthrough(uint64_t quads)
+{
+    __atomic_add_fetch(&pl_passthrough_quads, quads, __ATOMIC_RELAXED);
+}
+
+/* The counters of the statistics line, for programs and tests that want them without
+ * parsing stderr: quads, mvc, split, subdiv, passthrough. */
+QGL_API void qgl_preload_stats(uint64_t out[5]);
+QGL_API void qgl_preload_stats(uint64_t out[5])
+{
+    uint64_t passthrough = __atomic_load_n(&pl_passthrough_quads, __ATOMIC_RELAXED);
+    pl_stats_total(out);
+    out[0] += passthrough;
+    out[4] += passthrough;
+}
+
+static void pl_print_stats(void)
+{
+    uint64_t t[5];
+    qgl_preload_stats(t);
+    fprintf(stderr, "quadgl: %llu quads: mvc=%llu, split=%llu, subdiv=%llu, passthrough=%llu\n",
+            (unsigned long long)t[0], (unsigned long long)t[1], (unsigned long long)t[2],
+            (unsigned long long)t[3], (unsigned long long)t[4]);
+}
+
+static void pl_read_method(const char *s)
+{
+    static const struct {
+        const char *name;
+        int method;
+    } names[] = {{"auto", 0}, {"mvc", 1}, {"split", 2}, {"subdiv", 3}};
+    if (!s || !*s)
+        return;
+    if (strcmp(s, "off") == 0) {
+        pl_cfg.capture = 0;
+        return;
+    }
+    if (strcmp(s, "replay") == 0) {
+        pl_cfg.replay = 1;
+        return;
+    }
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strcmp(s, names[i].name) == 0) {
+            pl_cfg.method = names[i].method;
+            return;
+        }
+    pl_log(PL_LOG_WARN, "QUADGL_METHOD=%s unknown; using auto", s);
+}
+
+static void pl_read_log(const char *s)
+{
+    if (!s)
+        return;
+    if (strcmp(s, "info") == 0)
+        pl_cfg.log_level = PL_LOG_INFO;
+    else if (strcmp(s, "debug") == 0)
+        pl_cfg.log_level = PL_LOG_DEBUG;
+    else if (strcmp(s, "warn") != 0)
+        pl_log(PL_LOG_WARN, "QUADGL_LOG=%s unknown; using warn", s);
+}
+
+static void pl_read_tolerance(const char *s)
+{
+    char *end;
+    double v;
+    if (!s || !*s)
+        return;
+    v = strtod(s, &end);
+    if (*end || !(v > 0.0) || v > 1e6)
+        pl_log(PL_LOG_WARN, "QUADGL_TOLERANCE=%s is not a positive number of pixels; ignored", s);
+    else
+        pl_cfg.tolerance = (float)v;
+}
+
+__attribute__((constructor)) static void pl_init(void)
+{
+    const char *stats = secure_getenv("QUADGL_STATS");
+    pl_read_log(secure_getenv("QUADGL_LOG"));
+    pl_read_method(secure_getenv("QUADGL_METHOD"));
+    pl_read_tolerance(secure_getenv("QUADGL_TOLERANCE"));
+    pl_cfg.stats = stats && *stats && strcmp(stats, "0") != 0;
+    if (pl_cfg.stats)
+        atexit(pl_print_stats);
+    pl_log(PL_LOG_INFO, "loaded (%s)", !pl_cfg.capture ? "off" : pl_cfg.replay ? "replay" : "capturing");
+}

@@ -1,0 +1,135 @@
+/* real.c: finding the driver's own functions behind the ones this library exports.
+ *
+ * Every slot starts at a generated stub that resolves it on its first call, so nothing is
+ * looked up before the program uses it and no constructor touches GL. A name is searched,
+ * in order, as the next definition after this library (dlsym RTLD_NEXT: libGL, libOSMesa,
+ * libOpenGL, whatever the program linked), through the window systems' GetProcAddress (for
+ * extension functions a library does not export), and in libGL.so.1 / libOpenGL.so.0 opened
+ * by hand. Any candidate that lies inside this library is refused, so a wrapper can never
+ * resolve to itself and recurse. A name found nowhere gets a generated stand-in that does
+ * nothing, with one warning. */
+#include "preload.h"
+
+#include <dlfcn.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char pl_self_marker = 0;
+
+/* The base address of this library, to recognise our own functions. */
+static void *pl_self_base(void)
+{
+    static void *base;
+    if (!base) {
+        Dl_info info;
+        if (dladdr(&pl_self_marker, &info))
+            base = info.dli_fbase;
+    }
+    return base;
+}
+
+const char *pl_self_path(void)
+{
+    static const char *path;
+    if (!path) {
+        Dl_info info;
+        if (dladdr(&pl_self_marker, &info))
+            path = info.dli_fname;
+    }
+    return path;
+}
+
+static int pl_is_ours(void *fn)
+{
+    Dl_info info;
+    if (!fn)
+        return 0;
+    return dladdr(fn, &info) && info.dli_fbase == pl_self_base();
+}
+
+void *pl_next_symbol(const char *name)
+{
+    void *fn = dlsym(RTLD_NEXT, name);
+    return pl_is_ours(fn) ? NULL : fn;
+}
+
+typedef void *(*pl_getproc_fn)(const char *);
+
+/* The window systems' own GetProcAddress functions, each the next definition after ours;
+ * the one of the API current on this thread first (glvnd's GLX stubs would dispatch an
+ * OSMesa context's calls to nothing). */
+static void *pl_getproc_any(const char *name)
+{
+    static const char *const getters[] = {"glXGetProcAddressARB", "eglGetProcAddress",
+                                          "OSMesaGetProcAddress"};
+    int first = 0;
+    if (pl_tls_ctx && pl_tls_ctx->api == PL_API_EGL)
+        first = 1;
+    else if (pl_tls_ctx && pl_tls_ctx->api == PL_API_OSMESA)
+        first = 2;
+    for (int k = 0; k < 3; k++) {
+        int i = (first + k) % 3;
+        pl_getproc_fn get = (pl_getproc_fn)pl_next_symbol(getters[i]);
+        void *fn = get ? get(name) : NULL;
+        if (fn && !pl_is_ours(fn))
+            return fn;
+    }
+    return NULL;
+}
+
+/* libGL opened by hand when the program reached us without one loaded (dlopen'ed us). */
+static void *pl_from_libraries(const char *name)
+{
+    static const char *const libs[] = {"libGL.so.1", "libOpenGL.so.0"};
+    for (size_t i = 0; i < sizeof libs / sizeof libs[0]; i++) {
+        void *(*open_fn)(const char *, int) = (void *(*)(const char *, int))pl_next_symbol("dlopen");
+        void *h = open_fn ? open_fn(libs[i], RTLD_LAZY | RTLD_GLOBAL) : NULL;
+        void *fn = h ? dlsym(h, name) : NULL;
+        if (fn && !pl_is_ours(fn))
+            return fn;
+    }
+    return NULL;
+}
+
+void *pl_real_proc(const char *name)
+{
+    void *fn = pl_next_symbol(name);
+    if (!fn)
+        fn = pl_getproc_any(name);
+    if (!fn)
+        fn = pl_from_libraries(name);
+    return fn;
+}
+
+void pl_resolve_slot(int slot)
+{
+    void *fn = pl_real_proc(pl_slot_name[slot]);
+    if (!fn) {
+        pl_log(PL_LOG_WARN, "no driver function %s; calls to it do nothing", pl_slot_name[slot]);
+        fn = pl_none_slot[slot];
+    }
+    __atomic_store_n(&pl_real_slot[slot], fn, __ATOMIC_RELEASE);
+}
+
+static int pl_proc_cmp(const void *key, const void *row)
+{
+    return strcmp((const char *)key, ((const pl_proc *)row)->name);
+}
+
+/* Window-system entry points we wrap (winsys.c), for GetProcAddress. */
+extern const pl_proc pl_winsys_table[];
+extern const int pl_winsys_count;
+
+void *pl_own_proc(const char *name)
+{
+    const pl_proc *p;
+    if (!name)
+        return NULL;
+    p = bsearch(name, pl_proc_table, (size_t)pl_proc_count, sizeof *p, pl_proc_cmp);
+    if (p)
+        return p->fn;
+    for (int i = 0; i < pl_winsys_count; i++)
+        if (strcmp(name, pl_winsys_table[i].name) == 0)
+            return pl_winsys_table[i].fn;
+    return NULL;
+}

@@ -1,0 +1,54 @@
+/* pt.h: harness of the preload tests: legacy GL scenes drawn with and without the library.
+ *
+ * A test program is an ordinary legacy OSMesa program linked against libOSMesa only; meson
+ * runs it with libquadgl-preload.so in LD_PRELOAD. Each scene is drawn twice: in this process
+ * (through the library) and in a child, this same program started again without LD_PRELOAD
+ * (the native driver), which sends back its pixels and any values the scene records (glGetError
+ * results, say). The comparison depends on QUADGL_METHOD: off and replay must give the native
+ * pixels exactly; the drawing methods must match the native pixels outside the quads the
+ * scene declares, match the mean value reference (qgl_weights per pixel centre) inside
+ * them, and, where a scene declares non-affine quads, visibly differ from the native split. */
+#ifndef PT_HARNESS_H
+#define PT_HARNESS_H
+
+#include <GL/gl.h>
+#include <stdint.h>
+
+#define PT_W 64
+#define PT_H 64
+#define PT_MAX_QUADS 64
+#define PT_MAX_VALUES 256
+
+typedef struct pt_quad {
+    float v[4][2];   /* corners in normalized device coordinates, GL order */
+    float c[4][4];   /* colours (RGBA) at the corners */
+    int flat;        /* 0, or 1 + the corner whose colour fills the quad (flat shading) */
+} pt_quad;
+
+typedef struct pt_run {
+    unsigned char pixels[PT_W * PT_H * 4];
+    uint32_t values[PT_MAX_VALUES];
+    int nvalues;
+    pt_quad quads[PT_MAX_QUADS]; /* what the scene drew, for the reference */
+    int nquads;
+    int checks_reference;   /* the quads above are the whole picture's quads, in plain colour */
+    int native_equal;       /* the picture must equal the native one (affine quads, states
+                               the driver draws itself) within 2/255 */
+    int min_quads;          /* quads the library must have seen (not in off mode) */
+} pt_run;
+
+typedef struct pt_scene {
+    const char *name;
+    void (*draw)(pt_run *r);
+} pt_scene;
+
+void pt_value(pt_run *r, uint32_t v);
+void pt_expect(pt_run *r, const float v[4][2], const float c[4][4], int flat);
+/* Runs the scene named argv[1] (and, with argv[1] == "--native", the child's side). Returns
+ * the exit code: 0 pass, 1 fail, 77 skip. */
+int pt_main(int argc, char **argv, const pt_scene *scenes, int nscenes);
+
+/* For scenes: an orthographic identity view, cleared to opaque black. */
+void pt_begin_frame(void);
+
+#endif

@@ -1,0 +1,562 @@
+/* test_scenes.c: legacy GL scenes drawn through the preload library and natively (see pt.h).
+ *
+ * Each scene exercises one way a program hands quads to GL: glBegin/glEnd with every kind of
+ * attribute call, client arrays, buffer objects, display lists (nested, defined after their
+ * caller, compile-and-execute, glCallLists with a base, deleted and redefined), flat shading
+ * (with and without lighting), polygon mode line, lighting, texturing, evaluators, misuse, and
+ * a primitive of ten million vertices. The quads are in normalized device coordinates under
+ * identity matrices, so the reference of a declared quad is its corners' colours
+ * interpolated by mean value weights. */
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include "pt.h"
+
+/* Three non-affine quads (colour corners that no plane fits) and a two-quad strip. */
+static const float Q[3][4][2] = {
+    {{-0.9f, -0.9f}, {-0.1f, -0.8f}, {-0.2f, -0.1f}, {-0.8f, -0.3f}},
+    {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.8f, -0.2f}, {0.2f, -0.1f}},
+    {{-0.9f, 0.1f}, {-0.1f, 0.2f}, {-0.2f, 0.9f}, {-0.9f, 0.8f}},
+};
+static const float C[3][4][4] = {
+    {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}},
+    {{1, 1, 0, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}},
+    {{0, 0, 0, 1}, {1, 0.5f, 0, 1}, {0, 0, 0, 1}, {0, 0.5f, 1, 1}},
+};
+static const float S[6][2] = {{0.1f, 0.1f}, {0.1f, 0.9f}, {0.5f, 0.15f}, {0.45f, 0.85f}, {0.9f, 0.1f}, {0.85f, 0.9f}};
+static const float SC[6][4] = {{1, 0, 0, 1}, {0, 0, 1, 1}, {0, 1, 0, 1}, {1, 1, 1, 1}, {1, 0, 1, 1}, {0, 0, 0, 1}};
+
+static void expect_quads(pt_run *r, int flat)
+{
+    for (int q = 0; q < 3; q++)
+        pt_expect(r, Q[q], C[q], flat ? 4 : 0);
+}
+
+/* Strip quad k is v2k, v2k+1, v2k+3, v2k+2; its provoking vertex 2k+3 is corner 2. */
+static void expect_strip(pt_run *r, int flat)
+{
+    static const int order[4] = {0, 1, 3, 2};
+    for (int k = 0; k < 2; k++) {
+        float v[4][2], c[4][4];
+        for (int i = 0; i < 4; i++) {
+            memcpy(v[i], S[2 * k + order[i]], sizeof v[i]);
+            memcpy(c[i], SC[2 * k + order[i]], sizeof c[i]);
+        }
+        pt_expect(r, v, c, flat ? 3 : 0);
+    }
+}
+
+static void strip_immediate(void)
+{
+    glBegin(GL_QUAD_STRIP);
+    for (int i = 0; i < 6; i++) {
+        glColor4fv(SC[i]);
+        glVertex2fv(S[i]);
+    }
+    glEnd();
+}
+
+static void quad_immediate(int q, float dx, float dy)
+{
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(C[q][i]);
+        glVertex2f(Q[q][i][0] + dx, Q[q][i][1] + dy);
+    }
+    glEnd();
+}
+
+/* ---- immediate mode ---------------------------------------------------------------------- */
+
+static void scene_immediate(pt_run *r)
+{
+    pt_begin_frame();
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) { /* float colour, float vertex */
+        glColor4f(C[0][i][0], C[0][i][1], C[0][i][2], C[0][i][3]);
+        glVertex2f(Q[0][i][0], Q[0][i][1]);
+    }
+    for (int i = 0; i < 4; i++) { /* double colour, double vertex with z and w */
+        glColor3d(C[1][i][0], C[1][i][1], C[1][i][2]);
+        glVertex4d(Q[1][i][0], Q[1][i][1], 0.0, 1.0);
+    }
+    for (int i = 0; i < 4; i++) { /* vector forms */
+        double v[3] = {Q[2][i][0], Q[2][i][1], 0.0};
+        glColor3fv(C[2][i]);
+        glVertex3dv(v);
+    }
+    glVertex2f(0.5f, 0.5f); /* an incomplete trailing quad is dropped */
+    glVertex2f(0.6f, 0.5f);
+    glEnd();
+    strip_immediate();
+    expect_quads(r, 0);
+    expect_strip(r, 0);
+    r->checks_reference = 1;
+    r->min_quads = 5;
+}
+
+/* Colour given from the second vertex on: vertex 0 takes the colour current at glBegin; after
+ * glEnd the current colour is the last one given (the triangle below shows it). */
+static void scene_partial(pt_run *r)
+{
+    float c[4][4];
+    memcpy(c, C[0], sizeof c);
+    c[0][0] = 0.25f, c[0][1] = 0.5f, c[0][2] = 0.75f;
+    pt_begin_frame();
+    glColor3f(0.25f, 0.5f, 0.75f);
+    glBegin(GL_QUADS);
+    glVertex2fv(Q[0][0]);
+    for (int i = 1; i < 4; i++) {
+        glColor4ub((GLubyte)(C[0][i][0] * 255), (GLubyte)(C[0][i][1] * 255), (GLubyte)(C[0][i][2] * 255), 255);
+        glVertex2fv(Q[0][i]);
+    }
+    glEnd();
+    glBegin(GL_TRIANGLES);
+    glVertex2f(0.2f, 0.2f);
+    glVertex2f(0.9f, 0.2f);
+    glVertex2f(0.5f, 0.9f);
+    glEnd();
+    pt_expect(r, Q[0], c, 0);
+    r->checks_reference = 1;
+    r->min_quads = 1;
+}
+
+/* ---- vertex arrays --------------------------------------------------------------------------- */
+
+static void scene_arrays(pt_run *r)
+{
+    GLubyte col[4][4];
+    GLuint idx[4] = {0, 1, 2, 3};
+    float inter[4][6], cur[4];
+    GLint first[1] = {0};
+    GLsizei count[1] = {6};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = (GLubyte)(C[0][i][k] * 255.0f + 0.5f);
+    pt_begin_frame();
+    glColor3f(0.125f, 0.25f, 0.5f);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(2, GL_FLOAT, 0, Q[0]);
+    glColorPointer(4, GL_UNSIGNED_BYTE, 0, col);
+    glDrawArrays(GL_QUADS, 0, 4);
+    glVertexPointer(2, GL_FLOAT, 0, Q[1]);
+    glColorPointer(4, GL_FLOAT, 0, C[1]);
+    glDrawElements(GL_QUADS, 4, GL_UNSIGNED_INT, idx);
+    for (int i = 0; i < 4; i++) {
+        memcpy(inter[i], C[2][i], 3 * sizeof(float));
+        inter[i][3] = Q[2][i][0], inter[i][4] = Q[2][i][1], inter[i][5] = 0;
+    }
+    glInterleavedArrays(GL_C3F_V3F, 0, inter);
+    glDrawArrays(GL_QUADS, 0, 4);
+    glVertexPointer(2, GL_FLOAT, 0, S);
+    glColorPointer(4, GL_FLOAT, 0, SC);
+    glMultiDrawArrays(GL_QUAD_STRIP, first, count, 1);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glDisableClientState(GL_COLOR_ARRAY);
+    /* The current colour after array draws is what the driver leaves (the one from before). */
+    glGetFloatv(GL_CURRENT_COLOR, cur);
+    for (int i = 0; i < 4; i++)
+        pt_value(r, (uint32_t)(cur[i] * 1000.0f));
+    expect_quads(r, 0);
+    expect_strip(r, 0);
+    r->checks_reference = 1;
+    r->min_quads = 5;
+}
+
+/* Interleaved position + colour in a buffer object, 32-bit indices in an element buffer. */
+static void scene_buffers(pt_run *r)
+{
+    float data[10][6];
+    GLuint idx[8] = {9, 8, 7, 6, 0, 1, 2, 3}, vbo, ebo;
+    for (int i = 0; i < 4; i++) {
+        data[i][0] = Q[0][i][0], data[i][1] = Q[0][i][1];
+        memcpy(&data[i][2], C[0][i], 4 * sizeof(float));
+        /* Q[1] stored backwards at 6..9 so its indices are 9 8 7 6 -> corners 0 1 2 3 */
+        data[9 - i][0] = Q[1][i][0], data[9 - i][1] = Q[1][i][1];
+        memcpy(&data[9 - i][2], C[1][i], 4 * sizeof(float));
+    }
+    memset(data[4], 0, 2 * sizeof data[4]);
+    pt_begin_frame();
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof data, data, GL_STATIC_DRAW);
+    glGenBuffers(1, &ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof idx, idx, GL_STATIC_DRAW);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(2, GL_FLOAT, 6 * sizeof(float), (void *)0);
+    glColorPointer(4, GL_FLOAT, 6 * sizeof(float), (void *)(2 * sizeof(float)));
+    glLockArraysEXT(0, 10);
+    glDrawRangeElements(GL_QUADS, 0, 9, 8, GL_UNSIGNED_INT, (void *)0);
+    glUnlockArraysEXT();
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glVertexPointer(2, GL_FLOAT, 0, Q[2]);
+    glColorPointer(4, GL_FLOAT, 0, C[2]);
+    glDrawArrays(GL_QUADS, 0, 4);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    glDeleteBuffers(1, &vbo);
+    glDeleteBuffers(1, &ebo);
+    expect_quads(r, 0);
+    r->checks_reference = 1;
+    r->min_quads = 3;
+}
+
+/* ---- display lists ---------------------------------------------------------------------------- */
+
+/* explicit_first: vertex 0 of the compile-and-execute quad gets its own colour. Mesa compiles
+ * a quad whose first vertex takes a colour set earlier in the same list with another
+ * triangulation than the same calls made immediately or split over two lists, so the exact
+ * comparison of the replay mode uses this variant. */
+static void draw_lists(pt_run *r, int explicit_first)
+{
+    GLuint base = glGenLists(8);
+    GLubyte calls[2] = {0, 1};
+    float moved[4][2], c1[4][4];
+    pt_begin_frame();
+    /* base+1 calls base+0 under a translation before base+0 exists: resolved when it runs. */
+    glNewList(base + 1, GL_COMPILE);
+    glPushMatrix();
+    glTranslatef(0.0f, 1.0f, 0.0f);
+    glCallList(base + 0);
+    glPopMatrix();
+    glEndList();
+    glNewList(base + 0, GL_COMPILE);
+    quad_immediate(1, 0, 0);
+    glEndList();
+    glCallList(base + 1);
+    /* Compile-and-execute, with a colour set inside the list that vertex 0 then takes. */
+    glNewList(base + 2, GL_COMPILE_AND_EXECUTE);
+    glColor3f(0.5f, 0.0f, 0.25f);
+    glBegin(GL_QUADS);
+    if (explicit_first)
+        glColor3f(0.5f, 0.0f, 0.25f);
+    glVertex2fv(Q[0][0]);
+    for (int i = 1; i < 4; i++) {
+        glColor4fv(C[0][i]);
+        glVertex2fv(Q[0][i]);
+    }
+    glEnd();
+    glEndList();
+    glColor3f(0, 1, 0); /* overridden by the list's own colour when it runs again */
+    glCallList(base + 2);
+    /* glCallLists through the list base: base+3 is a quad, base+4 the strip. */
+    glNewList(base + 3, GL_COMPILE);
+    quad_immediate(2, 0, 0);
+    glEndList();
+    glNewList(base + 4, GL_COMPILE);
+    strip_immediate();
+    glEndList();
+    glListBase(base + 3);
+    glCallLists(2, GL_UNSIGNED_BYTE, calls);
+    glListBase(0);
+    /* A deleted list draws nothing; a list redefined without quads draws its new content. */
+    glNewList(base + 5, GL_COMPILE);
+    quad_immediate(1, 0, 0);
+    glEndList();
+    glDeleteLists(base + 5, 1);
+    glCallList(base + 5);
+    pt_value(r, glIsList(base + 5));
+    pt_value(r, glIsList(base + 1));
+    glNewList(base + 6, GL_COMPILE);
+    quad_immediate(1, 0, 0);
+    glEndList();
+    glNewList(base + 6, GL_COMPILE);
+    glEndList();
+    glCallList(base + 6);
+    pt_value(r, glGetError());
+    glDeleteLists(base, 8);
+    for (int i = 0; i < 4; i++)
+        moved[i][0] = Q[1][i][0], moved[i][1] = Q[1][i][1] + 1.0f;
+    memcpy(c1, C[0], sizeof c1);
+    c1[0][0] = 0.5f, c1[0][1] = 0.0f, c1[0][2] = 0.25f;
+    pt_expect(r, moved, C[1], 0);
+    pt_expect(r, Q[0], c1, 0);
+    pt_expect(r, Q[2], C[2], 0);
+    expect_strip(r, 0);
+    r->checks_reference = 1;
+    r->min_quads = 6;
+}
+
+static void scene_lists(pt_run *r)
+{
+    draw_lists(r, 0);
+}
+
+static void scene_lists_explicit(pt_run *r)
+{
+    draw_lists(r, 1);
+}
+
+/* ---- fixed-function states ------------------------------------------------------------------------ */
+
+static void scene_flat(pt_run *r)
+{
+    pt_begin_frame();
+    glShadeModel(GL_FLAT);
+    for (int q = 0; q < 3; q++)
+        quad_immediate(q, 0, 0);
+    strip_immediate();
+    glShadeModel(GL_SMOOTH);
+    expect_quads(r, 1);
+    expect_strip(r, 1);
+    r->checks_reference = 1;
+    r->min_quads = 5;
+}
+
+/* Flat shading with lighting and a normal per vertex (glxgears' teeth): every quad takes the
+ * lit colour of its provoking vertex, as the driver draws it. */
+static void scene_flat_lit(pt_run *r)
+{
+    static const float dir[4] = {5.0f, 5.0f, 10.0f, 0.0f}, red[4] = {0.8f, 0.1f, 0.0f, 1.0f};
+    pt_begin_frame();
+    glShadeModel(GL_FLAT);
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glMaterialfv(GL_FRONT, GL_AMBIENT_AND_DIFFUSE, red);
+    glBegin(GL_QUAD_STRIP);
+    for (int i = 0; i < 6; i++) {
+        glNormal3f(0.3f * (float)(i % 3) - 0.3f, 0.2f * (float)(i % 2), 1.0f);
+        glVertex2fv(S[i]);
+    }
+    glEnd();
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glNormal3f(0.4f * (float)i - 0.6f, 0.1f, 1.0f);
+        glVertex2fv(Q[0][i]);
+    }
+    glEnd();
+    glDisable(GL_LIGHTING);
+    glShadeModel(GL_SMOOTH);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
+
+static void scene_polygon_line(pt_run *r)
+{
+    pt_begin_frame();
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    for (int q = 0; q < 3; q++)
+        quad_immediate(q, 0, 0);
+    strip_immediate();
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    r->native_equal = 1;
+    r->min_quads = 5;
+}
+
+/* A parallelogram with affine colours (c3 = c0 + c2 - c1): the driver's split is exact. */
+static const float P[4][2] = {{-0.8f, -0.7f}, {0.5f, -0.8f}, {0.8f, 0.6f}, {-0.5f, 0.7f}};
+static const float PC[4][4] = {{0.2f, 0.3f, 0.4f, 1}, {0.6f, 0.3f, 0.2f, 1}, {0.7f, 0.6f, 0.3f, 1}, {0.3f, 0.6f, 0.5f, 1}};
+
+static void scene_lighting(pt_run *r)
+{
+    static const float dir[4] = {0.3f, 0.4f, 1.0f, 0.0f}, white[4] = {0.8f, 0.8f, 0.8f, 1};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glEnable(GL_COLOR_MATERIAL);
+    glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+    glBegin(GL_QUADS);
+    glNormal3f(0, 0, 1);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(PC[i]);
+        glVertex2fv(P[i]);
+    }
+    glEnd();
+    glDisable(GL_COLOR_MATERIAL);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 1;
+}
+
+static void scene_texture(pt_run *r)
+{
+    GLubyte tex[8][8][4];
+    GLuint name;
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) {
+            GLubyte v = ((x ^ y) & 1) ? 230 : 40;
+            tex[y][x][0] = v, tex[y][x][1] = (GLubyte)(255 - v), tex[y][x][2] = 128, tex[y][x][3] = 255;
+        }
+    pt_begin_frame();
+    glGenTextures(1, &name);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 8, 8, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glEnable(GL_TEXTURE_2D);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(PC[i]);
+        glTexCoord2f(i == 1 || i == 2 ? 2.0f : 0.0f, i >= 2 ? 2.0f : 0.0f);
+        glVertex2fv(P[i]);
+    }
+    glEnd();
+    glDisable(GL_TEXTURE_2D);
+    glDeleteTextures(1, &name);
+    r->native_equal = 1;
+    r->min_quads = 1;
+}
+
+/* glEvalMesh2(GL_FILL) of a bilinear patch (order 2 x 2) with a colour map: its quads are
+ * the grid cells, each non-affine in colour, so they come out smooth. */
+static void scene_eval(pt_run *r)
+{
+    static const float pts[2][2][3] = {{{-0.8f, -0.8f, 0}, {-0.7f, 0.8f, 0}}, {{0.8f, -0.6f, 0}, {0.6f, 0.7f, 0}}};
+    static const float cols[2][2][4] = {{{1, 0, 0, 1}, {0, 0, 1, 1}}, {{0, 1, 0, 1}, {1, 1, 1, 1}}};
+    float cur[4];
+    pt_begin_frame();
+    glMap2f(GL_MAP2_VERTEX_3, 0, 1, 6, 2, 0, 1, 3, 2, &pts[0][0][0]);
+    glMap2f(GL_MAP2_COLOR_4, 0, 1, 8, 2, 0, 1, 4, 2, &cols[0][0][0]);
+    glEnable(GL_MAP2_VERTEX_3);
+    glEnable(GL_MAP2_COLOR_4);
+    glMapGrid2f(2, 0.0f, 1.0f, 2, 0.0f, 1.0f);
+    glColor3f(0.5f, 0.25f, 0.125f);
+    glEvalMesh2(GL_FILL, 0, 2, 0, 2);
+    glDisable(GL_MAP2_VERTEX_3);
+    glDisable(GL_MAP2_COLOR_4);
+    /* Evaluators leave the current colour alone (its red, green and blue here: Mesa 22 leaves
+     * the current alpha at 0 after glEvalMesh2, which the specification does not allow). */
+    glGetFloatv(GL_CURRENT_COLOR, cur);
+    for (int i = 0; i < 3; i++)
+        pt_value(r, (uint32_t)(cur[i] * 1000.0f));
+    /* Cell (i, j) has corners (u_i, v_j), (u_i, v_j+1), (u_i+1, v_j+1), (u_i+1, v_j): quad k
+     * of row j's strip. Position and colour are bilinear in (u, v) on the patch. */
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            static const int du[4] = {0, 0, 1, 1}, dv[4] = {0, 1, 1, 0};
+            float v[4][2], c[4][4];
+            for (int k = 0; k < 4; k++) {
+                float u = 0.5f * (float)(i + du[k]), w = 0.5f * (float)(j + dv[k]);
+                float b[2][2] = {{(1 - u) * (1 - w), (1 - u) * w}, {u * (1 - w), u * w}};
+                memset(v[k], 0, sizeof v[k]);
+                memset(c[k], 0, sizeof c[k]);
+                for (int a = 0; a < 2; a++)
+                    for (int e = 0; e < 2; e++) {
+                        for (int m = 0; m < 2; m++)
+                            v[k][m] += b[a][e] * pts[a][e][m];
+                        for (int m = 0; m < 4; m++)
+                            c[k][m] += b[a][e] * cols[a][e][m];
+                    }
+            }
+            pt_expect(r, v, c, 0);
+        }
+    r->checks_reference = 1;
+    r->min_quads = 4;
+}
+
+/* ---- misuse: the driver's own errors ----------------------------------------------------------- */
+
+static void scene_errors(pt_run *r)
+{
+    float cur[4];
+    pt_begin_frame();
+    glBegin(GL_QUADS);
+    glBegin(GL_QUADS); /* nested: GL_INVALID_OPERATION */
+    glVertex2fv(Q[0][0]);
+    glVertex2fv(Q[0][1]);
+    glVertex2fv(Q[0][2]);
+    glVertex2fv(Q[0][3]);
+    glEnd();
+    pt_value(r, glGetError());
+    pt_value(r, glGetError());
+    glEnd(); /* no glBegin: GL_INVALID_OPERATION */
+    pt_value(r, glGetError());
+    glVertex2f(0, 0); /* outside: no error */
+    pt_value(r, glGetError());
+    glBegin(GL_QUADS); /* 5 vertices: the last is dropped silently */
+    for (int i = 0; i < 5; i++)
+        glVertex2fv(Q[1][i % 4]);
+    glEnd();
+    pt_value(r, glGetError());
+    glBegin(GL_QUAD_STRIP); /* 3 vertices: nothing */
+    glVertex2fv(S[0]);
+    glVertex2fv(S[1]);
+    glVertex2fv(S[2]);
+    glEnd();
+    pt_value(r, glGetError());
+    glBegin(0x7777); /* GL_INVALID_ENUM */
+    pt_value(r, glGetError());
+    glBegin(GL_QUADS);
+    glEndList(); /* a list command inside glBegin/glEnd: GL_INVALID_OPERATION */
+    glEnd();
+    pt_value(r, glGetError());
+    glCallLists(1, 0x1234, "x"); /* GL_INVALID_ENUM */
+    pt_value(r, glGetError());
+    glBegin(GL_QUADS);
+    glColor3f(0.25f, 0.5f, 1.0f);
+    glEnd();
+    glGetFloatv(GL_CURRENT_COLOR, cur);
+    for (int i = 0; i < 4; i++)
+        pt_value(r, (uint32_t)(cur[i] * 1000.0f));
+    pt_value(r, glGetError());
+    r->native_equal = 1;
+    r->min_quads = 2;
+}
+
+/* ---- ten million vertices in one glBegin/glEnd ------------------------------------------------------- */
+
+static long max_rss_kb(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+static void scene_big(pt_run *r)
+{
+    const int n = 2500000; /* quads: 10 million vertices */
+    long before;
+    pt_begin_frame();
+    before = max_rss_kb();
+    glBegin(GL_QUADS);
+    for (int k = 0; k < n; k++) {
+        int cell = k % (PT_W * PT_H / 4);
+        float x = (float)(cell % (PT_W / 2)) / (PT_W / 4) - 1.0f, y = (float)(cell / (PT_W / 2)) / (PT_H / 4) - 1.0f;
+        float d = 2.0f / (PT_W / 2);
+        glColor3ub((GLubyte)(k * 7), (GLubyte)(k * 13), (GLubyte)(k * 3));
+        glVertex2f(x, y);
+        glVertex2f(x + d, y);
+        glVertex2f(x + d, y + d);
+        glVertex2f(x, y + d);
+    }
+    glEnd();
+    /* Held as captured vertices the primitive would need 1.3 GB; bounded chunks, a few MB. */
+    pt_value(r, max_rss_kb() - before < 200 * 1024);
+    r->native_equal = 1;
+    r->min_quads = n;
+}
+
+static const pt_scene scenes[] = {
+    {"immediate", scene_immediate},
+    {"partial", scene_partial},
+    {"arrays", scene_arrays},
+    {"buffers", scene_buffers},
+    {"lists", scene_lists},
+    {"lists_explicit", scene_lists_explicit},
+    {"flat", scene_flat},
+    {"flat_lit", scene_flat_lit},
+    {"polygon_line", scene_polygon_line},
+    {"lighting", scene_lighting},
+    {"texture", scene_texture},
+    {"eval", scene_eval},
+    {"errors", scene_errors},
+    {"big", scene_big},
+};
+
+int main(int argc, char **argv)
+{
+    return pt_main(argc, argv, scenes, (int)(sizeof scenes / sizeof scenes[0]));
+}
