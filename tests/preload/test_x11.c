@@ -116,6 +116,9 @@ static int run(char *const argv[], char *const extra[], const char *errfile)
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* The CPU fallback's count on the last statistics line read by stats_quads. */
+static long long last_subdiv;
+
 /* The quads counted by the statistics line in errfile (its stderr), or -1 without one. */
 static long long stats_quads(const char *errfile, const char *who)
 {
@@ -128,6 +131,7 @@ static long long stats_quads(const char *errfile, const char *who)
         if (sscanf(line, "quadgl: %lld quads: mvc=%lld, split=%lld, subdiv=%lld, passthrough=%lld", &q, &mvc, &split,
                    &subdiv, &pass) == 5) {
             fprintf(stderr, "%s: %s", who, line);
+            last_subdiv = subdiv;
             if (mvc + split + subdiv + pass != q) {
                 fprintf(stderr, "%s: the counters do not add up\n", who);
                 q = -1;
@@ -261,6 +265,12 @@ static int check_gears(const char *preload, const char *shim)
                methods[m], quads, off, n, allowed, worst);
         if (quads < 100 || off > allowed)
             fail = 1;
+        /* Issue 6's target: the shader path or the exact split serves glxgears' lit, flat
+         * quads; fewer than 1% go to the CPU fallback. */
+        if (strcmp(methods[m], "replay") != 0 && last_subdiv * 100 >= quads) {
+            fprintf(stderr, "gears (%s): %lld of %lld quads took the CPU fallback\n", methods[m], last_subdiv, quads);
+            fail = 1;
+        }
         free(ours);
     }
     free(native);
