@@ -59,6 +59,7 @@ static void measure(frame_fn f, int frames, timing *out)
     double wall[2][64], cpu[2][64];
     f(1); /* warm-up: shader compilation, buffer growth */
     f(0);
+    qgl_gl_flush(qgl_gl_current());
     glFinish();
     for (int i = 0; i < frames; i++)
         for (int k = 0; k < 2; k++) {
@@ -66,6 +67,8 @@ static void measure(frame_fn f, int frames, timing *out)
             glFinish();
             double t0 = now(), c0 = cpu_now();
             f(k == 0);
+            if (k == 1)
+                qgl_gl_flush(qgl_gl_current()); /* the end of a frame: quads gathered are drawn */
             glFinish();
             wall[k][i] = (now() - t0) * 1e3;
             cpu[k][i] = (cpu_now() - c0) * 1e3;
@@ -81,6 +84,8 @@ static void measure(frame_fn f, int frames, timing *out)
 #define C4(native) ((native) ? glColor4f : qglColor4f)
 #define T2(native) ((native) ? glTexCoord2f : qglTexCoord2f)
 #define V3(native) ((native) ? glVertex3f : qglVertex3f)
+/* Before a GL call of our own: the qgl context is told to draw what it gathered. */
+#define FLUSH(native) ((native) ? (void)0 : qgl_gl_flush(qgl_gl_current()))
 
 static void ortho(void)
 {
@@ -136,6 +141,7 @@ static void sphere(int native)
             sphere_vertex(native, i, j + 1, NU, NV);
         }
     E(native)();
+    FLUSH(native);
     glDisable(GL_TEXTURE_2D);
 }
 
@@ -210,6 +216,7 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
 {
     if (only && !strstr(name, only))
         return;
+    qgl_gl_make_current(q);
     setup(0);
     qgl_gl_set_method(q, method);
     timing t;
@@ -240,9 +247,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "quadgl-glbench: no OSMesa compatibility context\n");
         return 1;
     }
-    qgl_gl_desc d = {.get_proc = (void *(*)(const char *))OSMesaGetProcAddress};
+    /* q gathers consecutive primitives (this program flushes before its own GL calls, as
+     * the preload library can); q1 draws each primitive at its qglEnd */
+    qgl_gl_desc d = {.get_proc = (void *(*)(const char *))OSMesaGetProcAddress, .assume_exclusive = 1};
     qgl_context *q = qgl_gl_create(&d);
-    if (!q) {
+    d.assume_exclusive = 0;
+    qgl_context *q1 = qgl_gl_create(&d);
+    if (!q || !q1) {
         fprintf(stderr, "quadgl-glbench: qgl_gl_create failed\n");
         return 1;
     }
@@ -254,9 +265,11 @@ int main(int argc, char **argv)
     report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.5);
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
+    report("mesh, one draw per strip (auto)", q1, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.3);
     report("sphere 48x24 textured (mvc)", q, QGL_METHOD_MVC, setup_persp, sphere, frames, 99);
     qgl_gl_destroy(q);
+    qgl_gl_destroy(q1);
     OSMesaDestroyContext(osm);
     free(buf);
     return 0;

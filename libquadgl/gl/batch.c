@@ -97,5 +97,5 @@ QGL_API int qgl_draw_quads(qgl_context *ctx, const qgl_quad_batch *b)
     v->n = (size_t)b->count;
     v->mask = mask;
     convert(b, v);
-    return qgl__draw(ctx, v, b->topology);
+    return qgl__submit(ctx, v, b->topology);
 }

@@ -144,6 +144,7 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     ctx->method = d.method ? d.method : env_method();
     ctx->tolerance_px = d.tolerance_px > 0 ? d.tolerance_px : env_float("QUADGL_TOLERANCE", 0.5f);
     ctx->invisible_area_px = d.invisible_area_px > 0 ? d.invisible_area_px : 4.0f;
+    ctx->exclusive = d.assume_exclusive != 0;
     int glsl120_ok = probe_driver(ctx, &d);
     if (ctx->has_vao)
         create_objects(ctx);
@@ -155,6 +156,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
 {
     if (!ctx)
         return;
+    qgl__flush(ctx); /* inside its GL context, as the owner destroys it */
     if (qgl__tls_current == ctx)
         qgl__tls_current = NULL;
     qgl__programs_free(ctx);
@@ -167,6 +169,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     }
     qgl__verts_free(&ctx->cap);
     qgl__verts_free(&ctx->sub);
+    qgl__verts_free(&ctx->pend);
     free(ctx->clip);
     free(ctx->path);
     free(ctx->idx);
@@ -175,8 +178,10 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
 
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method)
 {
-    if (ctx && method >= QGL_METHOD_AUTO && method <= QGL_METHOD_SUBDIV)
+    if (ctx && method >= QGL_METHOD_AUTO && method <= QGL_METHOD_SUBDIV) {
+        qgl__flush(ctx); /* waiting quads were given under the old method */
         ctx->method = method;
+    }
 }
 
 QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx)

@@ -25,7 +25,7 @@ enum { OUTSIDE = 0, CAPTURE = 1, FORWARD = 2 };
         return
 
 /* The driver's current value of one attribute, for back-filling. */
-static void driver_current(qgl_context *c, unsigned bit, float out[4])
+void qgl__driver_current(qgl_context *c, unsigned bit, float out[4])
 {
     struct qgl__gl *gl = &c->gl;
     out[0] = out[1] = out[2] = 0;
@@ -61,7 +61,7 @@ static int join(qgl_context *c, unsigned bit)
     if (!qgl__verts_reserve(v, v->n, c->given | bit))
         return 0;
     float cur[4];
-    driver_current(c, bit, cur);
+    qgl__driver_current(c, bit, cur);
     for (size_t i = 0; i < v->n; i++) {
         switch (bit) {
         case QGL__A_COLOR: for (int k = 0; k < 4; k++) v->col[4 * i + k] = cur[k]; break;
@@ -128,6 +128,7 @@ QGL_API void qglBegin(unsigned mode)
 {
     CTX_OR_RETURN(c);
     if (c->in_begin == CAPTURE) {
+        qgl__flush(c);
         c->gl.End(); /* GL_INVALID_OPERATION, as the native nested glBegin */
         return;
     }
@@ -139,6 +140,7 @@ QGL_API void qglBegin(unsigned mode)
         forget_arrays(c);
         return;
     }
+    qgl__flush(c);
     c->gl.Begin(mode);
     if (c->in_begin == OUTSIDE)
         c->in_begin = FORWARD;
@@ -168,6 +170,7 @@ QGL_API void qglEnd(void)
 {
     CTX_OR_RETURN(c);
     if (c->in_begin != CAPTURE) {
+        qgl__flush(c);
         c->gl.End(); /* a forwarded primitive, or GL_INVALID_OPERATION outside one */
         c->in_begin = OUTSIDE;
         return;
@@ -175,8 +178,7 @@ QGL_API void qglEnd(void)
     c->in_begin = OUTSIDE;
     qgl_topology topo = c->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP;
     c->cap.mask = c->given;
-    if (qgl__nquads(topo, c->cap.n) > 0)
-        qgl__draw(c, &c->cap, topo);
+    qgl__submit(c, &c->cap, topo);
     set_current(c);
 }
 
@@ -186,8 +188,10 @@ QGL_API void qglEnd(void)
     CTX_OR_RETURN(c); \
     if (c->in_begin == CAPTURE) \
         capture_vertex(c, (float)(x), (float)(y), (float)(z), (float)(w)); \
-    else \
-        forward
+    else { \
+        qgl__flush(c); \
+        forward; \
+    }
 
 QGL_API void qglVertex2f(float x, float y) { VERTEX(x, y, 0, 1, c->gl.Vertex2f(x, y)); }
 QGL_API void qglVertex2d(double x, double y) { VERTEX(x, y, 0, 1, c->gl.Vertex2d(x, y)); }
@@ -223,8 +227,10 @@ QGL_API void qglVertex4sv(const short *v) { VERTEX(v[0], v[1], v[2], v[3], c->gl
         if (!(c->given & (bit)) && !join(c, (bit))) \
             return; \
         store; \
-    } else \
-        forward
+    } else { \
+        qgl__flush(c); \
+        forward; \
+    }
 
 #define UB(x) ((float)(x) / 255.0f)
 
@@ -286,8 +292,10 @@ static int unit_of(unsigned target)
         if (!(c->given & (QGL__A_TEX0 << u)) && !join(c, QGL__A_TEX0 << u)) \
             return; \
         store; \
-    } else \
-        forward
+    } else { \
+        qgl__flush(c); \
+        forward; \
+    }
 
 QGL_API void qglMultiTexCoord2f(unsigned t, float s, float tt) { MULTI(t, set4(c->cur_tex[u], s, tt, 0, 1), c->gl.MultiTexCoord2f(t, s, tt)); }
 QGL_API void qglMultiTexCoord4f(unsigned t, float s, float tt, float r, float q) { MULTI(t, set4(c->cur_tex[u], s, tt, r, q), c->gl.MultiTexCoord4f(t, s, tt, r, q)); }
@@ -347,6 +355,7 @@ QGL_API void qglMaterialf(unsigned face, unsigned pname, float param)
     CTX_OR_RETURN(c);
     if (c->in_begin == CAPTURE && pname == GL_SHININESS)
         capture_material(c, face, pname, &param);
+    qgl__flush(c); /* quads already waiting were given under the old material */
     c->gl.Materialf(face, pname, param);
 }
 
@@ -355,6 +364,7 @@ QGL_API void qglMaterialfv(unsigned face, unsigned pname, const float *params)
     CTX_OR_RETURN(c);
     if (c->in_begin == CAPTURE && params)
         capture_material(c, face, pname, params);
+    qgl__flush(c);
     c->gl.Materialfv(face, pname, params);
 }
 
@@ -561,6 +571,7 @@ QGL_API void qglArrayElement(int i)
 {
     CTX_OR_RETURN(c);
     if (c->in_begin != CAPTURE || i < 0 || !read_arrays(c)) {
+        qgl__flush(c);
         if (c->gl.ArrayElement)
             c->gl.ArrayElement(i);
         return;

@@ -11,8 +11,9 @@
  * for the others, with the driver's current value at the time they were finished, which is
  * what the driver would have used for them. A primitive that could draw differently once
  * unrolled is drawn at once after a flush: method SPLIT (the driver's own strip split was
- * asked for) and edge flags (strips ignore them). Every qgl* call that reaches the driver
- * flushes first (qgl__flush), so the driver sees the same sequence as without batching. */
+ * asked for), edge flags (strips ignore them) and per-vertex materials. Every qgl* call that
+ * reaches the driver flushes first (qgl__flush), so the driver sees the same sequence as
+ * without batching. */
 #include <string.h>
 
 #include "gl_internal.h"
@@ -92,7 +93,8 @@ int qgl__submit(qgl_context *ctx, qgl__verts *v, qgl_topology topo)
     size_t nq = qgl__nquads(topo, v->n);
     if (!nq)
         return 0;
-    int defer = ctx->exclusive && ctx->method != QGL_METHOD_SPLIT && !(v->mask & QGL__A_EDGE);
+    int defer = ctx->exclusive && ctx->method != QGL_METHOD_SPLIT &&
+                !(v->mask & (QGL__A_EDGE | QGL__A_MATERIAL));
     if (!defer || ctx->pend.n + 4 * nq > PENDING_MAX)
         qgl__flush(ctx);
     if (!defer)

@@ -445,29 +445,32 @@ static void gs_source(sb *b, const qgl__key *k)
 /* ---- fragment shader ------------------------------------------------------------------------- */
 
 static const char fs_weights[] =
-    /* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once. */
+    /* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once, with
+     * one division instead of nine: t_i = num_i / den_i (the non-cancelling form) and
+     * nu_i = (t_{i-1} + t_i) / r_i are scaled by the common factor prod_j den_j r_j, which
+     * leaves only products. On an edge segment (den_i = 0) this gives the edge's linear
+     * interpolation as the limit, with no test; only a pixel centre on a corner (0 / 0) needs
+     * one. s is first scaled to a sum of 1 so that the eight-fold products stay in range. */
     "vec4 weights() {\n"
     "    vec4 sx = vec4(gA.x, gA.z, gB.x, gB.z), sy = vec4(gA.y, gA.w, gB.y, gB.w);\n"
+    "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
+    "    sx *= k;\n"
+    "    sy *= k;\n"
     "    vec4 sxn = sx.yzwx, syn = sy.yzwx;\n"
     "    vec4 rho = sqrt(sx * sx + sy * sy);\n"
-    "    vec4 rhon = rho.yzwx;\n"
     "    vec4 A = sx * syn - sy * sxn;\n"
     "    vec4 D = sx * sxn + sy * syn;\n"
-    "    vec4 P = rho * rhon;\n"
+    "    vec4 P = rho * rho.yzwx;\n"
     "    bvec4 pd = greaterThan(D, vec4(0.0));\n"
-    "    vec4 t = mix(P - D, A, pd) / mix(A, P + D, pd);\n"
-    "    vec4 nu = (t.wxyz + t) / rho;\n"
-    "    vec4 lam = nu / dot(nu, vec4(1.0));\n"
-    "    float rsum = dot(rho, vec4(1.0));\n"
-    "    vec4 onv = step(rho, vec4(1e-6 * rsum));\n"
-    "    vec4 one = step(abs(A), 1e-6 * (P - D)) * step(D, vec4(0.0));\n"
-    "    float nv = dot(onv, vec4(1.0)), ne = dot(one, vec4(1.0));\n"
-    "    if (ne > 0.0) {\n"
-    "        vec4 rs = rho + rhon;\n"
-    "        lam = (one * rhon / rs + (one * rho / rs).wxyz) / ne;\n"
+    "    vec4 num = mix(P - D, A, pd), den = mix(A, P + D, pd);\n"
+    "    vec4 nu = (num.wxyz * den + num * den.wxyz) * (den.yzwx * den.zwxy) * (rho.yzwx * rho.zwxy * rho.wxyz);\n"
+    "    float s = dot(nu, vec4(1.0));\n"
+    "    if (s == 0.0) {\n"
+    "        float m = min(min(rho.x, rho.y), min(rho.z, rho.w));\n"
+    "        nu = vec4(lessThanEqual(rho, vec4(m)));\n"
+    "        s = dot(nu, vec4(1.0));\n"
     "    }\n"
-    "    if (nv > 0.0) lam = onv / nv;\n"
-    "    return lam;\n"
+    "    return nu / s;\n"
     "}\n";
 
 static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "sampler2DRect"};
