@@ -109,6 +109,32 @@ typedef struct qgl_quad_batch {
  * coordinates are left as they were. */
 QGL_API int qgl_draw_quads(qgl_context *ctx, const qgl_quad_batch *b);
 
+/* ---- retained batches: quads drawn many times (display lists) ------------------------------ */
+
+/* A copy of a batch with the part of the plan that does not depend on the GL state worked out
+ * once (per quad: planar?, which attributes are affine in object space?). It holds no GL
+ * object: it may be drawn in any context and released from any thread (not while a draw of
+ * it runs). */
+typedef struct qgl_retained qgl_retained;
+
+/* Zero means default for every field. */
+typedef struct qgl_retain_desc {
+    /* Optional: draws these very quads through the driver as the application itself would
+       (e.g. a display list compiled from its own calls), leaving the current attributes as
+       it leaves them. When the current state splits every quad exactly (or draws them as
+       the driver does: polygon mode line, select), qgl_gl_draw_retained calls it and does
+       nothing else. */
+    void (*draw_native)(void *user);
+    void *user;
+} qgl_retain_desc;
+
+/* NULL on bad arguments or no memory. desc may be NULL. */
+QGL_API qgl_retained *qgl_gl_retain(const qgl_quad_batch *b, const qgl_retain_desc *desc);
+/* Draw r in the current GL state, as qgl_draw_quads would draw its batch. Returns the number
+ * of quads drawn, or a negative value (nothing drawn). */
+QGL_API int qgl_gl_draw_retained(qgl_context *ctx, const qgl_retained *r);
+QGL_API void qgl_gl_release(qgl_retained *r);
+
 /* ---- immediate mode, GL's own signatures, on the current qgl context ---------------------- */
 /* GL_QUADS and GL_QUAD_STRIP are captured and drawn at qglEnd; every other primitive, and
  * every call outside qglBegin/qglEnd, goes to the driver unchanged. */

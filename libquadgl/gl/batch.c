@@ -86,16 +86,22 @@ static void convert(const qgl_quad_batch *b, qgl__verts *v)
     }
 }
 
-QGL_API int qgl_draw_quads(qgl_context *ctx, const qgl_quad_batch *b)
+int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v)
 {
-    if (!ctx || !b || !batch_ok(b) || ctx->in_begin)
-        return -1;
-    qgl__verts *v = &ctx->cap;
+    if (!b || !batch_ok(b))
+        return 0;
     unsigned mask = batch_mask(b);
     if (!qgl__verts_reserve(v, (size_t)b->count, mask))
-        return -1;
+        return 0;
     v->n = (size_t)b->count;
     v->mask = mask;
     convert(b, v);
-    return qgl__submit(ctx, v, b->topology);
+    return 1;
+}
+
+QGL_API int qgl_draw_quads(qgl_context *ctx, const qgl_quad_batch *b)
+{
+    if (!ctx || ctx->in_begin || !qgl__batch_to_verts(b, &ctx->cap))
+        return -1;
+    return qgl__submit(ctx, &ctx->cap, b->topology);
 }

@@ -6,7 +6,11 @@
  * polygon mode line/point and select/feedback render modes go to the driver as quads; in
  * AUTO a quad the diagonal split renders exactly (planar, attributes affine in object space)
  * or invisibly (bounding box under invisible_area_px) is split by the driver; the rest takes
- * the shader path when the state is modelled and the CPU subdivision otherwise. Quads are
+ * the shader path when the state is modelled and the CPU subdivision otherwise. Smooth
+ * lighting is exact too where it reads no position (directional lights, infinite viewer) and
+ * corners with equal attributes group along parallel edges (a cylinder's quads): the lit
+ * colour is then affine over the quad. A retained batch (retain.c) brings these per-quad
+ * facts precomputed, and skips everything when they make every quad the driver's. Quads are
  * drawn in their original order, as runs of consecutive quads sharing a path (blending and
  * equal depths make order visible). All vertices are uploaded once into our own buffer,
  * behind our own vertex array object; afterwards the program, the bindings, the client
@@ -123,8 +127,148 @@ static int split_is_exact(const qgl__state *st, const qgl__verts *v, const size_
     return qgl_split_is_exact(p, packed, n, 1e-5);
 }
 
+/* Corner c's captured attributes, concatenated (positions excluded); returns the count. */
+static int corner_inputs(const qgl__verts *v, size_t i, float *out)
+{
+    struct { unsigned bit; const float *a; int n; } arrays[5 + QGL_MAX_TEXUNITS] = {
+        {QGL__A_COLOR, v->col, 4}, {QGL__A_NORMAL, v->nrm, 3}, {QGL__A_COLOR2, v->col2, 3},
+        {QGL__A_FOG, v->fog, 1}, {QGL__A_MATERIAL, v->mat, QGL__MATERIAL_FLOATS}};
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
+        arrays[5 + u].bit = QGL__A_TEX0 << u;
+        arrays[5 + u].a = v->tex[u];
+        arrays[5 + u].n = 4;
+    }
+    int k = 0;
+    for (size_t b = 0; b < sizeof arrays / sizeof arrays[0]; b++)
+        if (v->mask & arrays[b].bit)
+            for (int j = 0; j < arrays[b].n; j++)
+                out[k++] = arrays[b].a[(size_t)arrays[b].n * i + (size_t)j];
+    return k;
+}
+
+/* QGL__F_GROUPED: corners with equal attributes are grouped; a per-vertex function of the
+ * attributes is a combination of the groups' indicators (1 on the group, 0 elsewhere), so it
+ * is affine whenever they all are. Two corners sharing a normal on each long side of a
+ * cylinder's quad are the common case: smooth lighting is then exactly the split. */
+static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p[4][3])
+{
+    enum { MAXIN = 4 + 3 + 3 + 1 + QGL__MATERIAL_FLOATS + 4 * QGL_MAX_TEXUNITS };
+    float in[4][MAXIN];
+    int n = 0, group[4], ngroups = 0;
+    for (int c = 0; c < 4; c++)
+        n = corner_inputs(v, idx[c], in[c]);
+    for (int c = 0; c < 4; c++) {
+        group[c] = ngroups;
+        for (int d = 0; d < c; d++)
+            if (memcmp(in[c], in[d], (size_t)n * sizeof(float)) == 0) {
+                group[c] = group[d];
+                break;
+            }
+        if (group[c] == ngroups)
+            ngroups++;
+    }
+    if (ngroups == 1)
+        return 1;
+    if (ngroups == 4)
+        return 0; /* a lone corner's indicator is never affine on a quad with an interior */
+    double ind[4 * 3];
+    for (int c = 0; c < 4; c++)
+        for (int g = 0; g < ngroups; g++)
+            ind[c * ngroups + g] = group[c] == g;
+    return qgl_split_is_exact(p, ind, ngroups, 1e-5);
+}
+
+/* Object-space corners (w > 0 each); 0 when a corner is at or behind infinity. */
+static int object_corners(const qgl__verts *v, const size_t idx[4], double p[4][3])
+{
+    for (int c = 0; c < 4; c++) {
+        const float *q = v->pos + 4 * idx[c];
+        if (!(q[3] > 0))
+            return 0;
+        for (int k = 0; k < 3; k++)
+            p[c][k] = q[k] / q[3];
+    }
+    return 1;
+}
+
+/* One attribute (n floats per vertex at a) affine over the quad, or absent (a NULL). */
+static int class_affine(const double p[4][3], const float *a, int n, const size_t idx[4])
+{
+    double attr[4 * 4];
+    if (!a)
+        return 1;
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < n; k++)
+            attr[c * n + k] = a[(size_t)n * idx[c] + (size_t)k];
+    return qgl_split_is_exact(p, attr, n, 1e-5);
+}
+
+uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q)
+{
+    size_t idx[4];
+    double p[4][3];
+    for (int c = 0; c < 4; c++)
+        idx[c] = qgl__corner(topo, q, c);
+    if (!object_corners(v, idx, p) || !qgl_is_planar(p, 1e-6))
+        return 0;
+    uint16_t f = QGL__F_PLANAR;
+    unsigned m = v->mask;
+    f |= quad_grouped(v, idx, p) ? QGL__F_GROUPED : 0;
+    f |= class_affine(p, (m & QGL__A_COLOR) ? v->col : NULL, 4, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
+    f |= class_affine(p, (m & QGL__A_COLOR2) ? v->col2 : NULL, 3, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
+    f |= class_affine(p, (m & QGL__A_FOG) ? v->fog : NULL, 1, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (class_affine(p, (m & (QGL__A_TEX0 << u)) ? v->tex[u] : NULL, 4, idx))
+            f |= (uint16_t)(QGL__F_AFFINE << (QGL__FC_TEX0 + u));
+    return f;
+}
+
+/* The facts a quad needs under this state for its split to be exact (as gather_attribs
+ * chooses the attributes that reach the picture). Texture coordinates are judged before
+ * their texture matrix: a linear map keeps affine coordinates affine. */
+static unsigned needed_facts(const qgl__state *st)
+{
+    const qgl__key *key = &st->ffp;
+    int smooth = st->shade_model != GL_FLAT, all = !st->modelled;
+    unsigned need = QGL__F_PLANAR;
+    if (smooth)
+        need |= QGL__F_AFFINE << QGL__FC_COLOR;
+    if ((smooth && (key->flags & QGL__KF_COLOR_SUM)) || all)
+        need |= QGL__F_AFFINE << QGL__FC_COLOR2;
+    if ((key->fog && !(key->flags & QGL__KF_FOG_DEPTH)) || all)
+        need |= QGL__F_AFFINE << QGL__FC_FOG;
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (key->unit[u].target || all)
+            need |= QGL__F_AFFINE << (QGL__FC_TEX0 + u);
+    return need;
+}
+
+static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
+{
+    if (st->nonaffine)
+        return st->lit_by_inputs && (f & (QGL__F_PLANAR | QGL__F_GROUPED)) == (QGL__F_PLANAR | QGL__F_GROUPED);
+    return (f & need) == need;
+}
+
+/* Whether the split is exact, and whether the quad is planar: from the cached facts of a
+ * retained batch, else tested now. */
+static int quad_exact(const qgl__state *st, const qgl__verts *v, const size_t idx[4], const qgl__facts *facts,
+                      size_t q, int *planar)
+{
+    if (facts) {
+        *planar = facts->quad[q] & QGL__F_PLANAR;
+        return exact_by_facts(st, needed_facts(st), facts->quad[q]);
+    }
+    int exact = split_is_exact(st, v, idx, planar);
+    if (!exact && *planar && st->nonaffine && st->lit_by_inputs) {
+        double p[4][3];
+        exact = object_corners(v, idx, p) && quad_grouped(v, idx, p);
+    }
+    return exact;
+}
+
 static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
-                               qgl_topology topo, size_t q)
+                               qgl_topology topo, size_t q, const qgl__facts *facts)
 {
     size_t idx[4];
     const double *clip[4];
@@ -145,7 +289,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
         return QGL__P_SPLIT;
     int planar = 0;
-    int exact = split_is_exact(st, v, idx, &planar);
+    int exact = quad_exact(st, v, idx, facts, q, &planar);
     if (ctx->method == QGL_METHOD_AUTO && exact)
         return QGL__P_SPLIT;
     if (!st->modelled || (!planar && st->polygon_offset))
@@ -480,7 +624,8 @@ static void draw_glsl120(qgl_context *ctx, const qgl__state *st, const qgl__vert
 
 /* ---- the batch -------------------------------------------------------------------------------- */
 
-static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq)
+static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
+                const qgl__facts *facts)
 {
     if (!ensure((void **)&ctx->path, &ctx->path_cap, nq, 1))
         return 0;
@@ -494,7 +639,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     for (size_t i = 0; i < v->n; i++)
         transform(st->mvp, v->pos + 4 * i, ctx->clip + 4 * i);
     for (size_t q = 0; q < nq; q++) {
-        unsigned char p = plan_quad(ctx, st, v, topo, q);
+        unsigned char p = plan_quad(ctx, st, v, topo, q, facts);
         if ((p & 15) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
             p = QGL__P_SUBDIV;
         ctx->path[q] = p;
@@ -502,7 +647,34 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     return 1;
 }
 
+/* A retained batch the driver can draw as the application would, when this state plans every
+ * quad the driver's way (polygon mode line/point, select/feedback, method SPLIT, or the split
+ * exact for all); counted as that path. */
+static int draw_natively(qgl_context *ctx, const qgl__state *st, const qgl__facts *facts, size_t nq)
+{
+    unsigned char path;
+    if (!facts || !facts->native)
+        return 0;
+    if (st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL)
+        path = QGL__P_PASS;
+    else if (ctx->method == QGL_METHOD_SPLIT ||
+             (ctx->method == QGL_METHOD_AUTO && exact_by_facts(st, needed_facts(st), facts->all)))
+        path = QGL__P_SPLIT;
+    else
+        return 0;
+    ctx->stats.quads += nq;
+    count(ctx, path, nq);
+    ctx->stats.draws++;
+    facts->native(facts->user);
+    return 1;
+}
+
 int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo)
+{
+    return qgl__draw_with_facts(ctx, v, topo, NULL);
+}
+
+int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts)
 {
     size_t nq = qgl__nquads(topo, v->n);
     if (!nq)
@@ -512,8 +684,11 @@ int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo)
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
         st.ffp.flags |= QGL__KF_MATERIAL;
         st.pv_material = st.nonaffine = 1;
+        st.lit_by_inputs = 0;
     }
-    if (!plan(ctx, &st, v, topo, nq))
+    if (draw_natively(ctx, &st, facts, nq))
+        return (int)nq;
+    if (!plan(ctx, &st, v, topo, nq, facts))
         return -1;
     ctx->stats.quads += nq;
     saved sv;

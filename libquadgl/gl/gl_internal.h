@@ -259,6 +259,10 @@ typedef struct qgl__state {
     int polygon_offset;       /* GL_POLYGON_OFFSET_FILL (needs rasterizer depth) */
     int pv_material;          /* lit quads with per-vertex materials: only the shaders draw them
                                  right (the driver's split sees the last material only) */
+    int lit_by_inputs;        /* the per-vertex work is a function of the captured attributes
+                                 alone (directional lights, infinite viewer, no texgen reading
+                                 the eye position): where corners with equal attributes group
+                                 affinely (QGL__F_GROUPED) its result is affine, split exactly */
     qgl__key ffp;             /* the fixed-function part of the program key */
 } qgl__state;
 
@@ -323,8 +327,33 @@ enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3 };
 /* Bits on top of QGL__P_MVC in the per-quad path byte. */
 enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5 };
 
+/* Per-quad facts that do not depend on the GL state (cached by retained batches). */
+enum {
+    QGL__F_PLANAR = 1 << 0,  /* every corner has w > 0 and the quad is planar */
+    QGL__F_GROUPED = 1 << 1, /* the corners whose captured attributes are all equal form groups
+                                whose indicator functions are affine: then any per-vertex
+                                function of the attributes alone is affine over the quad */
+    QGL__F_AFFINE = 1 << 2   /* QGL__F_AFFINE << class: that attribute (QGL__FC_*) is affine in
+                                object space over the quad, or absent */
+};
+enum { QGL__FC_COLOR, QGL__FC_COLOR2, QGL__FC_FOG, QGL__FC_TEX0 }; /* unit u: QGL__FC_TEX0 + u */
+
+/* A retained batch's cached plan, handed to the drawing code. */
+typedef struct qgl__facts {
+    const uint16_t *quad;    /* per quad */
+    uint16_t all;            /* the facts every quad has */
+    void (*native)(void *user); /* optional: the driver draws the batch as the application would */
+    void *user;
+} qgl__facts;
+
+/* batch.c: a batch in the capture layout; 0 on bad arguments or no memory. */
+int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v);
+
 /* draw.c */
 int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
+/* qgl__draw with the cached facts of a retained batch (NULL: none). */
+int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts);
+uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
 /* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */
 size_t qgl__nquads(qgl_topology topo, size_t n);

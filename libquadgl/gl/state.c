@@ -294,6 +294,21 @@ static int nonaffine(const qgl__state *st)
     return 0;
 }
 
+/* The per-vertex work reads the captured attributes and constants only, never the position:
+ * no positional light, an infinite viewer, no texgen from the eye position (sphere map,
+ * reflection map); linear texgen is affine in the position, which a planar quad is. */
+static int lit_by_inputs(const qgl__state *st)
+{
+    const qgl__key *k = &st->ffp;
+    if (k->light_pos || (k->flags & QGL__KF_LOCAL_VIEWER))
+        return 0;
+    for (int u = 0; u < k->nunits; u++)
+        for (int c = 0; c < 4; c++)
+            if (k->unit[u].gen[c] == QGL__G_SPHERE || k->unit[u].gen[c] == QGL__G_REFLECT)
+                return 0;
+    return 1;
+}
+
 /* Issue 4's subset (what the GLSL 1.20 path implements). */
 static int simple(const qgl__key *k)
 {
@@ -367,4 +382,5 @@ void qgl__query_state(qgl_context *ctx, qgl__state *st)
     st->modelled = ctx->shader_level && ffp && st->program == 0 && clamp &&
                    (ctx->shader_level == 150 || st->simple);
     st->nonaffine = st->program != 0 || !ffp || nonaffine(st); /* unknown work: assume the worst */
+    st->lit_by_inputs = st->program == 0 && ffp && lit_by_inputs(st);
 }

@@ -341,11 +341,9 @@ static int pl_array_draw(GLenum mode, GLint first, GLsizei count, GLenum type, c
     rc = pl_arrays_capture(x, &x->scratch, mode, first, count, type, indices);
     if (rc == 0 && x->compiling) {
         pl_list_record_prim(x, &x->scratch);
-        if (pl_cfg.replay) {
-            pl_list_native_begin(x);
-            pl_array_draw_native(mode, first, count, type, indices);
-            pl_list_native_end(x);
-        }
+        pl_list_native_begin(x);
+        pl_array_draw_native(mode, first, count, type, indices);
+        pl_list_native_end(x);
         if (x->compile_mode == GL_COMPILE_AND_EXECUTE)
             pl_draw_prim(x, &x->scratch);
     } else if (rc == 0 && pl_prim_for_driver(x, &x->scratch)) {

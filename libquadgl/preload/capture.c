@@ -28,6 +28,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->lost = 0;
     p->from_arrays = 0;
     p->native_list = 0;
+    p->retained = NULL;
     memset(p->first, 0, sizeof p->first);
     memset(&p->cur, 0, sizeof p->cur);
     p->cur.pos[3] = 1.0f;
@@ -35,6 +36,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
 
 void pl_prim_free(pl_prim *p)
 {
+    pl_retained_free(p->retained);
     free(p->v);
     free(p->mat);
     memset(p, 0, sizeof *p);
@@ -43,6 +45,7 @@ void pl_prim_free(pl_prim *p)
 int pl_prim_copy(pl_prim *dst, const pl_prim *src)
 {
     *dst = *src;
+    dst->retained = NULL;
     dst->v = NULL;
     dst->mat = NULL;
     dst->cap = src->n;
@@ -334,11 +337,9 @@ PL_EXPORT void glEnd(void)
     x->capturing = 0;
     if (x->compiling) {
         pl_list_record_prim(x, &x->prim);
-        if (pl_cfg.replay) {
-            pl_list_native_begin(x);
-            pl_prim_emit(&x->prim);
-            pl_list_native_end(x);
-        }
+        pl_list_native_begin(x);
+        pl_prim_emit(&x->prim);
+        pl_list_native_end(x);
         if (x->compile_mode == GL_COMPILE_AND_EXECUTE)
             pl_draw_prim(x, &x->prim);
         pl_list_segment_open(x);

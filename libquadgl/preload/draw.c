@@ -9,9 +9,15 @@
  * batch's), is replayed to the driver as the very calls it would have seen: glBegin, the
  * attributes given per vertex, glVertex4fv, glEnd. Either way the current attributes end as
  * GL leaves them: the last values given inside glBegin/glEnd, or for an array draw (and an
- * evaluator mesh) the values from before it. */
+ * evaluator mesh) the values from before it. A primitive recorded in a display list is
+ * retained by the GL path at its first draw (qgl_gl_retain: its per-quad plan worked out once)
+ * with the driver's own compilation of its calls as the native way to draw it; each later
+ * draw only reads the state, and when that splits every quad exactly the driver's list runs
+ * and nothing else. Vertices that take a current value (an attribute first given after them)
+ * are filled at the first draw; if that value differs later, the plain path draws. */
 #include "preload.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static void pl_set_attr(int a, const pl_vertex *v)
@@ -92,34 +98,41 @@ static void pl_attrib(qgl_attrib *out, const float *ptr, int size)
     out->stride = (int)sizeof(pl_vertex);
 }
 
+/* The batch of quads [q0, q1) of p, pointing into its vertices. */
+static void pl_fill_batch(qgl_quad_batch *b, const pl_prim *p, size_t q0, size_t q1)
+{
+    size_t v0 = p->mode == GL_QUADS ? 4 * q0 : 2 * q0;
+    size_t count = p->mode == GL_QUADS ? 4 * (q1 - q0) : 2 * (q1 - q0) + 2;
+    const pl_vertex *v = p->v + v0;
+    memset(b, 0, sizeof *b);
+    b->topology = p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP;
+    b->count = q1 > q0 ? (int)count : 0;
+    pl_attrib(&b->position, v->pos, 4);
+    if (p->given & (1u << PL_A_COLOR))
+        pl_attrib(&b->color, v->color, 4);
+    if (p->given & (1u << PL_A_SECONDARY))
+        pl_attrib(&b->secondary_color, v->secondary, 3);
+    if (p->given & (1u << PL_A_NORMAL))
+        pl_attrib(&b->normal, v->normal, 3);
+    if (p->given & (1u << PL_A_FOG))
+        pl_attrib(&b->fog_coord, &v->fog, 1);
+    for (int u = 0; u < PL_TEXUNITS; u++)
+        if (p->given & (1u << (PL_A_TEX0 + u)))
+            pl_attrib(&b->texcoord[u], v->tex[u], 4);
+}
+
 /* Quads [q0, q1) of p through the GL path (or the driver, if it refuses them). */
 static void pl_batch(qgl_context *qgl, const pl_prim *p, size_t q0, size_t q1)
 {
     qgl_quad_batch b;
     size_t v0 = p->mode == GL_QUADS ? 4 * q0 : 2 * q0;
-    size_t count = p->mode == GL_QUADS ? 4 * (q1 - q0) : 2 * (q1 - q0) + 2;
-    const pl_vertex *v = p->v + v0;
     if (q1 <= q0)
         return;
-    memset(&b, 0, sizeof b);
-    b.topology = p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP;
-    b.count = (int)count;
-    pl_attrib(&b.position, v->pos, 4);
-    if (p->given & (1u << PL_A_COLOR))
-        pl_attrib(&b.color, v->color, 4);
-    if (p->given & (1u << PL_A_SECONDARY))
-        pl_attrib(&b.secondary_color, v->secondary, 3);
-    if (p->given & (1u << PL_A_NORMAL))
-        pl_attrib(&b.normal, v->normal, 3);
-    if (p->given & (1u << PL_A_FOG))
-        pl_attrib(&b.fog_coord, &v->fog, 1);
-    for (int u = 0; u < PL_TEXUNITS; u++)
-        if (p->given & (1u << (PL_A_TEX0 + u)))
-            pl_attrib(&b.texcoord[u], v->tex[u], 4);
+    pl_fill_batch(&b, p, q0, q1);
     if (qgl_draw_quads(qgl, &b) < 0) {
         size_t no_materials = p->nmat;
         pl_log(PL_LOG_DEBUG, "the GL path refused %zu quads; the driver draws them", q1 - q0);
-        pl_replay_range(p, v0, v0 + count, &no_materials);
+        pl_replay_range(p, v0, v0 + (size_t)b.count, &no_materials);
         pl_count_passthrough(q1 - q0);
     }
 }
@@ -149,6 +162,71 @@ static void pl_draw_gl(qgl_context *qgl, pl_prim *p)
 }
 #endif
 
+#if QGL_PRELOAD_GL_PATH
+/* A listed primitive's retained copy, and the current values its backfilled vertices (those
+ * before an attribute was first given) took when it was made. */
+struct pl_retained {
+    qgl_retained *r;
+    pl_vertex backfilled;
+};
+
+static void pl_call_native(void *list)
+{
+    REAL(glCallList)((GLuint)(uintptr_t)list);
+}
+
+static int pl_backfill_changed(const pl_prim *p, pl_vertex *bf)
+{
+    for (int a = 0; a < PL_A_COUNT; a++)
+        if ((p->given & (1u << a)) && p->first[a] > 0 &&
+            memcmp(pl_attr_ptr(bf, a), pl_attr_ptr(&p->v[0], a), pl_attr_size(a) * sizeof(float)) != 0)
+            return 1;
+    return 0;
+}
+
+static struct pl_retained *pl_retain(const pl_prim *p)
+{
+    struct pl_retained *r = calloc(1, sizeof *r);
+    qgl_retain_desc desc = {pl_call_native, (void *)(uintptr_t)p->native_list};
+    qgl_quad_batch b;
+    if (!r)
+        return NULL;
+    pl_fill_batch(&b, p, 0, pl_prim_quads(p));
+    r->backfilled = p->v[0];
+    if (!(r->r = qgl_gl_retain(&b, &desc))) {
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* The retained copy of p that matches its vertices as backfilled now; made on first use (a
+ * list may run on several threads: the first copy installed wins). NULL when the backfilled
+ * values changed since (the plain path draws) or on failure. */
+static struct pl_retained *pl_retained_get(pl_prim *p)
+{
+    struct pl_retained *r = __atomic_load_n(&p->retained, __ATOMIC_ACQUIRE), *none = NULL;
+    if (!r) {
+        if (!(r = pl_retain(p)))
+            return NULL;
+        if (!__atomic_compare_exchange_n(&p->retained, &none, r, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+            pl_retained_free(r);
+            r = none;
+        }
+    }
+    return pl_backfill_changed(p, &r->backfilled) ? NULL : r;
+}
+#endif
+
+void pl_retained_free(struct pl_retained *r)
+{
+#if QGL_PRELOAD_GL_PATH
+    if (r)
+        qgl_gl_release(r->r);
+#endif
+    free(r);
+}
+
 static int pl_program_bound(void)
 {
     GLint prog = 0;
@@ -177,4 +255,22 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
     (void)x;
 #endif
     pl_replay(p);
+}
+
+void pl_draw_listed(pl_ctx *x, pl_prim *p)
+{
+#if QGL_PRELOAD_GL_PATH
+    struct pl_retained *r;
+    if (p->native_list && !p->nmat && p->n && !pl_prim_for_driver(x, p)) {
+        for (int a = 0; a < PL_A_COUNT; a++)
+            if ((p->given & (1u << a)) && p->first[a] > 0)
+                pl_prim_backfill(p, a);
+        if ((r = pl_retained_get(p)) && qgl_gl_draw_retained(pl_ctx_qgl(x), r->r) >= 0) {
+            if (!p->from_arrays)
+                pl_prim_apply_current(p);
+            return;
+        }
+    }
+#endif
+    pl_draw_prim(x, p);
 }

@@ -343,7 +343,7 @@ static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
         pl_item *it = &l->items[i];
         switch (it->kind) {
         case PL_ITEM_SEGMENT: REAL(glCallList)(it->name); break;
-        case PL_ITEM_PRIM: pl_draw_prim(x, &it->prim); break;
+        case PL_ITEM_PRIM: pl_draw_listed(x, &it->prim); break;
         case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
         default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
         }

@@ -114,8 +114,10 @@ typedef struct pl_prim {
     int edge_off;            /* an edge flag was false: drawn by the driver itself */
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
-    GLuint native_list;      /* in a display list under QUADGL_METHOD=replay: the driver's
-                                own compilation of the same calls, what a replay runs */
+    GLuint native_list;      /* in a display list: the driver's own compilation of the same
+                                calls, what a replay (and a draw the split serves exactly) runs */
+    struct pl_retained *retained; /* in a display list: the GL path's retained copy, made at
+                                     its first draw (draw.c) */
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);
@@ -205,6 +207,10 @@ void pl_prim_apply_current(const pl_prim *p);
 void pl_prim_emit(const pl_prim *p);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
+/* Draws a primitive recorded in a display list (its retained copy when it has one). */
+void pl_draw_listed(pl_ctx *x, pl_prim *p);
+/* Frees a listed primitive's retained copy. */
+void pl_retained_free(struct pl_retained *r);
 
 /* ---- display lists (lists.c) ----------------------------------------------------------------- */
 
@@ -214,9 +220,9 @@ void pl_list_segment_close(pl_ctx *x);
 void pl_list_segment_open(pl_ctx *x);
 /* Records a finished primitive in the list being compiled (takes a copy). */
 void pl_list_record_prim(pl_ctx *x, const pl_prim *p);
-/* Under QUADGL_METHOD=replay, the driver also compiles the primitive's own calls (made
- * between these two) into a private list that replays run, so they match the driver's
- * compilation exactly. */
+/* The driver also compiles the primitive's own calls (made between these two) into a private
+ * list: what a replay runs, so it matches the driver's compilation exactly, and what a draw
+ * runs when the current state makes the split exact for every quad. */
 void pl_list_native_begin(pl_ctx *x);
 void pl_list_native_end(pl_ctx *x);
 void pl_share_unref(pl_share *s);

@@ -296,6 +296,40 @@ static void scene_lists_explicit(pt_run *r)
     draw_lists(r, 1);
 }
 
+/* One list drawn under several states (its retained copy must follow each: smooth, then flat
+ * shaded one unit up, where the driver's own compilation draws it), then redefined with
+ * another quad and drawn again, then deleted (drawing nothing). */
+static void scene_lists_states(pt_run *r)
+{
+    GLuint l = glGenLists(1);
+    float up[4][2];
+    pt_begin_frame();
+    glNewList(l, GL_COMPILE);
+    quad_immediate(0, 0, 0);
+    glEndList();
+    glCallList(l);
+    glShadeModel(GL_FLAT);
+    glPushMatrix();
+    glTranslatef(0.0f, 1.0f, 0.0f);
+    glCallList(l);
+    glPopMatrix();
+    glShadeModel(GL_SMOOTH);
+    glNewList(l, GL_COMPILE);
+    quad_immediate(1, 0, 0);
+    glEndList();
+    glCallList(l);
+    glDeleteLists(l, 1);
+    glCallList(l);
+    pt_value(r, glIsList(l));
+    for (int i = 0; i < 4; i++)
+        up[i][0] = Q[0][i][0], up[i][1] = Q[0][i][1] + 1.0f;
+    pt_expect(r, Q[0], C[0], 0);
+    pt_expect(r, up, C[0], 4);
+    pt_expect(r, Q[1], C[1], 0);
+    r->checks_reference = 1;
+    r->min_quads = 3;
+}
+
 /* ---- fixed-function states ------------------------------------------------------------------------ */
 
 static void scene_flat(pt_run *r)
@@ -546,6 +580,7 @@ static const pt_scene scenes[] = {
     {"buffers", scene_buffers},
     {"lists", scene_lists},
     {"lists_explicit", scene_lists_explicit},
+    {"lists_states", scene_lists_states},
     {"flat", scene_flat},
     {"flat_lit", scene_flat_lit},
     {"polygon_line", scene_polygon_line},
