@@ -367,6 +367,9 @@ void qgl__programs_free(qgl_context *ctx);
 /* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */
 int qgl__key_slots(const qgl__key *key);
 
+/* shader.c: the weights as a GLSL function, vec4 quad_weights(vec4 sx, vec4 sy), GLSL 1.20 and later. */
+extern const char qgl__glsl_weights[];
+
 /* glsl120.c: the shader path without geometry shaders. draw returns 0 when it cannot draw
  * the run (a key it does not implement, a program the driver refuses): use the fallback. */
 int qgl__glsl120_supported(qgl_context *ctx);

@@ -88,9 +88,8 @@ static const char vs_src[] =
     "#endif\n"
     "}\n";
 
-/* The weights are those of shader.c (and of the core, libquadgl/core/weights_impl.h);
- * GLSL 1.20 has no mix() on a bvec, so the branch select is a 0/1 float vector (exact:
- * both candidates are finite). */
+/* The fragment shader; quad_weights() (shader.c's qgl__glsl_weights, the core's weights in
+ * GLSL) is put in front of it by compile(). */
 static const char fs_src[] =
     "varying vec4 v_g01, v_g23;\n"
     "#if COLOR && FLAT\n"
@@ -106,27 +105,7 @@ static const char fs_src[] =
     "varying vec4 v_w, v_z;\n"
     "#endif\n"
     "vec4 weights() {\n"
-    "    vec4 sx = vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), sy = vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w);\n"
-    "    vec4 sxn = sx.yzwx, syn = sy.yzwx;\n"
-    "    vec4 rho = sqrt(sx * sx + sy * sy);\n"
-    "    vec4 rhon = rho.yzwx;\n"
-    "    vec4 A = sx * syn - sy * sxn;\n"
-    "    vec4 D = sx * sxn + sy * syn;\n"
-    "    vec4 P = rho * rhon;\n"
-    "    vec4 pd = vec4(greaterThan(D, vec4(0.0)));\n"
-    "    vec4 t = mix(P - D, A, pd) / mix(A, P + D, pd);\n"
-    "    vec4 nu = (t.wxyz + t) / rho;\n"
-    "    vec4 lam = nu / dot(nu, vec4(1.0));\n"
-    "    float rsum = dot(rho, vec4(1.0));\n"
-    "    vec4 onv = step(rho, vec4(1e-6 * rsum));\n"
-    "    vec4 one = step(abs(A), 1e-6 * (P - D)) * step(D, vec4(0.0));\n"
-    "    float nv = dot(onv, vec4(1.0)), ne = dot(one, vec4(1.0));\n"
-    "    if (ne > 0.0) {\n"
-    "        vec4 rs = rho + rhon;\n"
-    "        lam = (one * rhon / rs + (one * rho / rs).wxyz) / ne;\n"
-    "    }\n"
-    "    if (nv > 0.0) lam = onv / nv;\n"
-    "    return lam;\n"
+    "    return quad_weights(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
     "}\n"
     "void main() {\n"
     "    vec4 lam = weights();\n"
@@ -169,9 +148,9 @@ static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, const char *b
              "#define NOALPHA %d\n#define DEPTH %d\n#define DISCARD %d\n",
              !!(key & QGL__K_COLOR), !!(key & QGL__K_FLAT), !!(key & QGL__K_TEX), !!(key & QGL__K_REPLACE),
              !!(key & QGL__K_NOALPHA), !!(key & QGL__K_DEPTH), !!(key & QGL__K_DISCARD));
-    const char *src[2] = {head, body};
+    const char *src[3] = {head, type == GL_FRAGMENT_SHADER ? qgl__glsl_weights : "", body};
     GLuint sh = gl->CreateShader(type);
-    gl->ShaderSource(sh, 2, src, NULL);
+    gl->ShaderSource(sh, 3, src, NULL);
     gl->CompileShader(sh);
     GLint ok = 0;
     gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);

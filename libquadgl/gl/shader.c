@@ -444,15 +444,17 @@ static void gs_source(sb *b, const qgl__key *k)
 
 /* ---- fragment shader ------------------------------------------------------------------------- */
 
-static const char fs_weights[] =
-    /* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once, with
-     * one division instead of nine: t_i = num_i / den_i (the non-cancelling form) and
-     * nu_i = (t_{i-1} + t_i) / r_i are scaled by the common factor prod_j den_j r_j, which
-     * leaves only products. On an edge segment (den_i = 0) this gives the edge's linear
-     * interpolation as the limit, with no test; only a pixel centre on a corner (0 / 0) needs
-     * one. s is first scaled to a sum of 1 so that the eight-fold products stay in range. */
-    "vec4 weights() {\n"
-    "    vec4 sx = vec4(gA.x, gA.z, gB.x, gB.z), sy = vec4(gA.y, gA.w, gB.y, gB.w);\n"
+/* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once, shared
+ * by both shader paths and written in GLSL 1.20 for that reason (no bvec mix: the branch
+ * select is a 0/1 float vector, exact since both candidates are finite). sx, sy are the
+ * corners' g_i, a positive multiple of the core's s~_i. One division instead of nine:
+ * t_i = num_i / den_i (the non-cancelling form) and nu_i = (t_{i-1} + t_i) / r_i are scaled by
+ * the common factor prod_j den_j r_j, which leaves only products. On an edge segment
+ * (den_i = 0) this gives the edge's linear interpolation as the limit, with no test; only a
+ * pixel centre on a corner (0 / 0) needs one. s is first scaled to a sum of 1 so that the
+ * eight-fold products stay in range. */
+const char qgl__glsl_weights[] =
+    "vec4 quad_weights(vec4 sx, vec4 sy) {\n"
     "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
     "    sx *= k;\n"
     "    sy *= k;\n"
@@ -461,7 +463,7 @@ static const char fs_weights[] =
     "    vec4 A = sx * syn - sy * sxn;\n"
     "    vec4 D = sx * sxn + sy * syn;\n"
     "    vec4 P = rho * rho.yzwx;\n"
-    "    bvec4 pd = greaterThan(D, vec4(0.0));\n"
+    "    vec4 pd = vec4(greaterThan(D, vec4(0.0)));\n"
     "    vec4 num = mix(P - D, A, pd), den = mix(A, P + D, pd);\n"
     "    vec4 nu = (num.wxyz * den + num * den.wxyz) * (den.yzwx * den.zwxy) * (rho.yzwx * rho.zwxy * rho.wxyz);\n"
     "    float s = dot(nu, vec4(1.0));\n"
@@ -471,6 +473,11 @@ static const char fs_weights[] =
     "        s = dot(nu, vec4(1.0));\n"
     "    }\n"
     "    return nu / s;\n"
+    "}\n";
+
+static const char fs_weights[] =
+    "vec4 weights() {\n"
+    "    return quad_weights(vec4(gA.x, gA.z, gB.x, gB.z), vec4(gA.y, gA.w, gB.y, gB.w));\n"
     "}\n";
 
 static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "sampler2DRect"};
@@ -628,7 +635,7 @@ static void fs_source(sb *b, const qgl__key *k)
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
             put(b, "uniform %s u_tex%d;\n", sampler_type[k->unit[u].target], u);
-    put(b, "%s", fs_weights);
+    put(b, "%s%s", qgl__glsl_weights, fs_weights);
     put(b, "void main() {\n    vec4 lam = weights();\n");
     if (k->flags & QGL__KF_DISCARD)
         put(b, "    if (any(lessThan(lam, vec4(0.0)))) discard;\n");
