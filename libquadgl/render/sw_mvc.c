@@ -214,6 +214,39 @@ static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const float clipf[4][4
     return 1;
 }
 
+/* A whole span of plain fragments (no shading callback, no blending, no facing or count
+ * buffer, depth test LESS, every lane covered with finite weights inside the near/far
+ * range): the arithmetic of qgl__fragment, laid out lane by lane so that it vectorizes.
+ * Returns 0 when the span does not qualify; the caller then takes the per-lane path. */
+static int span_store_plain(qgl__ctx *c, int xs, int y, int n, const signed char facing[SPAN], const span_out *o,
+                            int nattr)
+{
+    const qgl_sw_draw_desc *d = c->d;
+    qgl_sw_fb *fb = c->fb;
+    if (n != SPAN || d->shade || d->blend == QGL_SW_BLEND_ADD || fb->facing || fb->count || !fb->depth ||
+        d->depth != QGL_SW_DEPTH_LESS || nattr != fb->channels)
+        return 0;
+    int ok = 1;
+    for (int k = 0; k < SPAN; k++)
+        ok &= facing[k] != 0 && o->inv[k] != 0 && isfinite(o->inv[k]) && o->zndc[k] >= -1.0f && o->zndc[k] <= 1.0f;
+    if (!ok)
+        return 0;
+    size_t i0 = (size_t)y * (size_t)fb->width + (size_t)xs;
+    float *dz = fb->depth + i0, *col = fb->color + i0 * (size_t)nattr;
+    int written = 0;
+    for (int k = 0; k < SPAN; k++) {
+        float zw = (float)(0.5 * o->zndc[k] + 0.5);
+        if (!(zw < dz[k]))
+            continue;
+        dz[k] = zw;
+        for (int a = 0; a < nattr; a++)
+            col[k * nattr + a] = o->attr[a][k];
+        written++;
+    }
+    c->fragments += written;
+    return 1;
+}
+
 void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
 {
     float corner_attr[4][QGL_SW_MAX_ATTR], z[4], w[4], clipf[4][4], attr[QGL_SW_MAX_ATTR];
@@ -249,6 +282,8 @@ void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
             }
             span_setup(q, X0, Y, &s);
             span_weights(&s, (const float(*)[QGL_SW_MAX_ATTR])corner_attr, nattr, z, w, &o);
+            if (span_store_plain(c, xs, y, n, facing, &o, nattr))
+                continue;
             for (int k = 0; k < n; k++) {
                 if (!facing[k])
                     continue;
