@@ -167,3 +167,36 @@ int sc_diff(const th_ctx *t, const unsigned char *a, const unsigned char *b, int
         *over = n;
     return worst;
 }
+
+void sc_coverage_run(th_ctx *t, const sc_mesh *m, sc_coverage *out)
+{
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glColor4f(0.25f, 0.25f, 0.25f, 0.25f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    sc_draw(m, 1, 0, 0);
+    out->native = th_snapshot(t);
+    glClear(GL_COLOR_BUFFER_BIT);
+    qgl_gl_reset_stats(t->qgl);
+    sc_draw(m, 0, 0, 0);
+    out->ours = th_snapshot(t);
+    qgl_gl_stats(t->qgl, &out->st);
+    out->twice = out->differ = out->inside = 0;
+    for (int i = 0; i < t->w * t->h; i++) {
+        out->twice += out->ours[4 * i] > 80;
+        out->differ += (out->ours[4 * i] != 0) != (out->native[4 * i] != 0);
+        out->inside += out->native[4 * i] != 0;
+    }
+}
+
+const float sc_corner_colors[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+
+void sc_draw_quad(const float p[4][3])
+{
+    qglBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        qglColor4fv(sc_corner_colors[i]);
+        qglVertex3fv(p[i]);
+    }
+    qglEnd();
+}

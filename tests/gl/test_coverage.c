@@ -27,25 +27,12 @@ static void watertight(th_ctx *t, int strips, int persp)
         glLoadIdentity();
     }
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
     glClearColor(0, 0, 0, 0);
-    glColor4f(0.25f, 0.25f, 0.25f, 0.25f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    sc_draw(m, 1, 0, 0);
-    unsigned char *native = th_snapshot(t);
-    glClear(GL_COLOR_BUFFER_BIT);
-    qgl_gl_reset_stats(t->qgl);
-    sc_draw(m, 0, 0, 0);
-    unsigned char *ours = th_snapshot(t);
-    qgl_gl_stats_t st;
-    qgl_gl_stats(t->qgl, &st);
-    int twice = 0, differ = 0, inside = 0;
-    for (int i = 0; i < t->w * t->h; i++) {
-        twice += ours[4 * i] > 80;
-        differ += (ours[4 * i] != 0) != (native[4 * i] != 0);
-        inside += native[4 * i] != 0;
-    }
+    sc_coverage cv;
+    sc_coverage_run(t, m, &cv);
+    unsigned char *native = cv.native, *ours = cv.ours;
+    qgl_gl_stats_t st = cv.st;
+    int twice = cv.twice, differ = cv.differ, inside = cv.inside;
     char name[64];
     snprintf(name, sizeof name, "watertight_%s%s", strips ? "strip" : "quads", persp ? "_persp" : "");
     printf("%-26s covered %d, hit twice %d, differ from native %d (mvc quads %llu of %llu)\n", name, inside, twice,

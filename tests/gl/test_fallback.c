@@ -15,17 +15,6 @@
 
 #include "scenes.h"
 
-static const float cols[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
-
-static void draw(const float p[4][3])
-{
-    qglBegin(GL_QUADS);
-    for (int i = 0; i < 4; i++) {
-        qglColor4fv(cols[i]);
-        qglVertex3fv(p[i]);
-    }
-    qglEnd();
-}
 
 static void compare(th_ctx *t, qgl_context *shader, qgl_context *fallback, const float p[4][3], const char *name)
 {
@@ -35,7 +24,7 @@ static void compare(th_ctx *t, qgl_context *shader, qgl_context *fallback, const
         qgl_gl_make_current(k ? fallback : shader);
         qgl_gl_reset_stats(qgl_gl_current());
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        draw(p);
+        sc_draw_quad(p);
         img[k] = th_snapshot(t);
         qgl_gl_stats(qgl_gl_current(), &st);
         th_check(k ? st.subdiv == 1 : st.mvc == 1, "%s: wrong path", name);

@@ -9,19 +9,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "harness.h"
+#include "scenes.h"
 
-static const float cols[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
-
-static void draw_quad(const float p[4][3])
-{
-    qglBegin(GL_QUADS);
-    for (int i = 0; i < 4; i++) {
-        qglColor4fv(cols[i]);
-        qglVertex3fv(p[i]);
-    }
-    qglEnd();
-}
 
 /* Compare the framebuffer with the reference for one quad drawn alone on black. */
 static void compare(const th_ctx *t, const float p[4][3], const char *name, int check_depth)
@@ -36,12 +25,12 @@ static void compare(const th_ctx *t, const float p[4][3], const char *name, int 
     for (int y = 1; y < t->h - 1; y++)
         for (int x = 1; x < t->w - 1; x++) {
             float ref[4];
-            int in = th_ref_color(t, clip, cols, x, y, ref) == QGL_INSIDE;
+            int in = th_ref_color(t, clip, sc_corner_colors, x, y, ref) == QGL_INSIDE;
             int all_in = in, any_in = in;
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++) {
                     float r2[4];
-                    int i2 = th_ref_color(t, clip, cols, x + dx, y + dy, r2) == QGL_INSIDE;
+                    int i2 = th_ref_color(t, clip, sc_corner_colors, x + dx, y + dy, r2) == QGL_INSIDE;
                     all_in &= i2;
                     any_in |= i2;
                 }
@@ -84,7 +73,7 @@ static void run_flat(th_ctx *t, const float p[4][3], const char *name)
 {
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    draw_quad(p);
+    sc_draw_quad(p);
     th_write(t, NULL, name);
     compare(t, p, name, 0);
 }
@@ -125,7 +114,7 @@ int main(void)
     glRotatef(-30, 1, 0, 0);
     static const float saddle[4][3] = {{-1, -1, 0.5f}, {1, -1, -0.5f}, {1, 1, 0.5f}, {-1, 1, -0.5f}};
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    draw_quad(saddle);
+    sc_draw_quad(saddle);
     th_write(&t, NULL, "ref_saddle");
     compare(&t, saddle, "ref_saddle", 1);
 
@@ -134,7 +123,7 @@ int main(void)
     /* planar (z = -2 - 1.5 y), so eq. 4 depth and the clipped cover agree */
     static const float behind[4][3] = {{-1.0f, 0.8f, -3.2f}, {1.2f, 0.9f, -3.35f}, {1.5f, -2.0f, 1.0f}, {-1.2f, -1.0f, -0.5f}};
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    draw_quad(behind);
+    sc_draw_quad(behind);
     th_write(&t, NULL, "ref_behind_eye");
     compare(&t, behind, "ref_behind_eye", 0);
 
