@@ -11,7 +11,6 @@
 
 #include "scenes.h"
 
-
 /* Compare the framebuffer with the reference for one quad drawn alone on black. */
 static void compare(const th_ctx *t, const float p[4][3], const char *name, int check_depth)
 {
