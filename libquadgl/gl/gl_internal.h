@@ -369,6 +369,10 @@ int qgl__key_slots(const qgl__key *key);
 
 /* shader.c: the weights as a GLSL function, vec4 quad_weights(vec4 sx, vec4 sy), GLSL 1.20 and later. */
 extern const char qgl__glsl_weights[];
+/* shader.c: compile count sources as one shader / link a program; on failure 0, with the
+ * driver's log in log (size bytes). Both shader paths report failures their own way. */
+GLuint qgl__shader_compile(struct qgl__gl *gl, GLenum type, int count, const char *const *src, char *log, int size);
+int qgl__program_link(struct qgl__gl *gl, GLuint prog, char *log, int size);
 
 /* glsl120.c: the shader path without geometry shaders. draw returns 0 when it cannot draw
  * the run (a key it does not implement, a program the driver refuses): use the fallback. */

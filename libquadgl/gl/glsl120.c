@@ -149,19 +149,10 @@ static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, const char *b
              !!(key & QGL__K_COLOR), !!(key & QGL__K_FLAT), !!(key & QGL__K_TEX), !!(key & QGL__K_REPLACE),
              !!(key & QGL__K_NOALPHA), !!(key & QGL__K_DEPTH), !!(key & QGL__K_DISCARD));
     const char *src[3] = {head, type == GL_FRAGMENT_SHADER ? qgl__glsl_weights : "", body};
-    GLuint sh = gl->CreateShader(type);
-    gl->ShaderSource(sh, 3, src, NULL);
-    gl->CompileShader(sh);
-    GLint ok = 0;
-    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
-        if (getenv("QUADGL_DEBUG"))
-            fprintf(stderr, "quadgl: GLSL 1.20 shader (key %#x) failed:\n%s\n", key, log);
-        gl->DeleteShader(sh);
-        return 0;
-    }
+    char log[2048];
+    GLuint sh = qgl__shader_compile(gl, type, 3, src, log, sizeof log);
+    if (!sh && getenv("QUADGL_DEBUG"))
+        fprintf(stderr, "quadgl: GLSL 1.20 shader (key %#x) failed:\n%s\n", key, log);
     return sh;
 }
 
@@ -180,12 +171,8 @@ static GLuint link(qgl_context *ctx, unsigned key, GLuint vs, GLuint fs)
     gl->AttachShader(prog, vs);
     gl->AttachShader(prog, fs);
     bind_locations(gl, prog);
-    gl->LinkProgram(prog);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
+    char log[2048];
+    if (!qgl__program_link(gl, prog, log, sizeof log)) {
         if (getenv("QUADGL_DEBUG"))
             fprintf(stderr, "quadgl: GLSL 1.20 link (key %#x) failed:\n%s\n", key, log);
         gl->DeleteProgram(prog);

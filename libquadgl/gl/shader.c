@@ -675,22 +675,38 @@ static void warn(const qgl__key *k, uint32_t hash, const char *what, const char 
         fprintf(stderr, "%s\n(key: %zu bytes, %d varying slots)\n", log, sizeof *k, qgl__key_slots(k));
 }
 
-static GLuint compile(qgl_context *ctx, GLenum type, const char *src, const qgl__key *k, uint32_t hash)
+GLuint qgl__shader_compile(struct qgl__gl *gl, GLenum type, int count, const char *const *src, char *log, int size)
 {
-    struct qgl__gl *gl = &ctx->gl;
     GLuint sh = gl->CreateShader(type);
-    gl->ShaderSource(sh, 1, &src, NULL);
+    gl->ShaderSource(sh, count, src, NULL);
     gl->CompileShader(sh);
     GLint ok = 0;
     gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
+    if (ok)
+        return sh;
+    gl->GetShaderInfoLog(sh, size, NULL, log);
+    gl->DeleteShader(sh);
+    return 0;
+}
+
+int qgl__program_link(struct qgl__gl *gl, GLuint prog, char *log, int size)
+{
+    gl->LinkProgram(prog);
+    GLint ok = 0;
+    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok)
+        gl->GetProgramInfoLog(prog, size, NULL, log);
+    return ok;
+}
+
+static GLuint compile(qgl_context *ctx, GLenum type, const char *src, const qgl__key *k, uint32_t hash)
+{
+    char log[4096];
+    GLuint sh = qgl__shader_compile(&ctx->gl, type, 1, &src, log, sizeof log);
+    if (!sh) {
         if (getenv("QUADGL_DEBUG"))
             fprintf(stderr, "%s\n", src);
         warn(k, hash, "did not compile", log);
-        gl->DeleteShader(sh);
-        return 0;
     }
     return sh;
 }
@@ -701,14 +717,10 @@ static int link(qgl_context *ctx, GLuint prog, const qgl__key *k, uint32_t hash)
     if (lit(k) && (k->flags & QGL__KF_MATERIAL) && gl->BindAttribLocation)
         for (int i = 0; i < QGL__NMATERIAL; i++)
             gl->BindAttribLocation(prog, QGL__LOC_MATERIAL + (GLuint)i, material_names[i]);
-    gl->LinkProgram(prog);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
+    char log[4096];
+    int ok = qgl__program_link(gl, prog, log, sizeof log);
+    if (!ok)
         warn(k, hash, "did not link", log);
-    }
     return ok;
 }
 
