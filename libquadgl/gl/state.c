@@ -269,11 +269,10 @@ static void query_fog(qgl_context *ctx, qgl__key *k)
         k->flags |= QGL__KF_FOG_DEPTH;
 }
 
-/* Lighting or a normal-based texgen reads the normal; only then do its scalings matter. */
-static int reads_normal(const qgl__key *k)
+/* Some unit generates coordinates from the normal (sphere, reflection or normal map): not
+ * affine in the position, and a reader of the normal. */
+static int normal_texgen(const qgl__key *k)
 {
-    if (k->flags & QGL__KF_LIGHTING)
-        return 1;
     for (int u = 0; u < k->nunits; u++)
         for (int c = 0; c < 4; c++)
             if (k->unit[u].gen[c] >= QGL__G_SPHERE)
@@ -281,17 +280,17 @@ static int reads_normal(const qgl__key *k)
     return 0;
 }
 
+/* Lighting or a normal-based texgen reads the normal; only then do its scalings matter. */
+static int reads_normal(const qgl__key *k)
+{
+    return (k->flags & QGL__KF_LIGHTING) || normal_texgen(k);
+}
+
 /* Per-vertex results not affine in the captured attributes. */
 static int nonaffine(const qgl__state *st)
 {
     const qgl__key *k = &st->ffp;
-    if ((k->flags & QGL__KF_LIGHTING) && st->shade_model != GL_FLAT)
-        return 1;
-    for (int u = 0; u < k->nunits; u++)
-        for (int c = 0; c < 4; c++)
-            if (k->unit[u].gen[c] >= QGL__G_SPHERE)
-                return 1;
-    return 0;
+    return ((k->flags & QGL__KF_LIGHTING) && st->shade_model != GL_FLAT) || normal_texgen(k);
 }
 
 /* The per-vertex work reads the captured attributes and constants only, never the position:
