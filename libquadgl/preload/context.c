@@ -80,7 +80,6 @@ void pl_ctx_created(int api, void *handle, int share_api, void *share_handle)
 
 static void pl_stats_add(uint64_t t[5], const pl_ctx *x)
 {
-#if QGL_PRELOAD_GL_PATH
     qgl_gl_stats_t st;
     if (!x->qgl)
         return;
@@ -90,10 +89,6 @@ static void pl_stats_add(uint64_t t[5], const pl_ctx *x)
     t[2] += st.split;
     t[3] += st.subdiv;
     t[4] += st.passthrough;
-#else
-    (void)t;
-    (void)x;
-#endif
 }
 
 static void pl_ctx_free(pl_ctx *x)
@@ -121,16 +116,12 @@ static void pl_retire_locked(pl_ctx *x)
 /* Drops the GL path's context; its GL objects can only be deleted while x is current. */
 static void pl_drop_qgl(pl_ctx *x, int is_current)
 {
-#if QGL_PRELOAD_GL_PATH
     if (x->qgl && is_current) {
         qgl_gl_make_current(NULL);
         qgl_gl_destroy(x->qgl);
     } else if (x->qgl) {
         pl_log(PL_LOG_DEBUG, "context destroyed while not current: its GL path state is leaked");
     }
-#else
-    (void)is_current;
-#endif
     x->qgl = NULL;
 }
 
@@ -167,9 +158,7 @@ void pl_ctx_bind(int api, void *handle)
     if (x)
         x->bound = 1;
     pl_tls_ctx = x;
-#if QGL_PRELOAD_GL_PATH
     qgl_gl_make_current(x ? x->qgl : NULL);
-#endif
 }
 
 typedef void *(*pl_current_fn)(void);
@@ -199,7 +188,6 @@ pl_ctx *pl_current(void)
 
 qgl_context *pl_ctx_qgl(pl_ctx *x)
 {
-#if QGL_PRELOAD_GL_PATH
     if (x->qgl_state == 0) {
         qgl_gl_desc desc;
         memset(&desc, 0, sizeof desc);
@@ -215,10 +203,6 @@ qgl_context *pl_ctx_qgl(pl_ctx *x)
         qgl_gl_make_current(x->qgl);
     }
     return x->qgl;
-#else
-    (void)x;
-    return NULL;
-#endif
 }
 
 void pl_stats_total(uint64_t out[5])

@@ -89,7 +89,6 @@ static void pl_replay(pl_prim *p)
                 pl_set_attr(a, &saved);
 }
 
-#if QGL_PRELOAD_GL_PATH
 static void pl_attrib(qgl_attrib *out, const float *ptr, int size)
 {
     out->ptr = ptr;
@@ -160,9 +159,7 @@ static void pl_draw_gl(qgl_context *qgl, pl_prim *p)
     }
     pl_batch(qgl, p, q, nq);
 }
-#endif
 
-#if QGL_PRELOAD_GL_PATH
 /* A listed primitive's retained copy, and the current values its backfilled vertices (those
  * before an attribute was first given) took when it was made. */
 struct pl_retained {
@@ -216,14 +213,11 @@ static struct pl_retained *pl_retained_get(pl_prim *p)
     }
     return pl_backfill_changed(p, &r->backfilled) ? NULL : r;
 }
-#endif
 
 void pl_retained_free(struct pl_retained *r)
 {
-#if QGL_PRELOAD_GL_PATH
     if (r)
         qgl_gl_release(r->r);
-#endif
     free(r);
 }
 
@@ -244,22 +238,17 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
     for (int a = 0; a < PL_A_COUNT; a++)
         if ((p->given & (1u << a)) && p->first[a] > 0)
             pl_prim_backfill(p, a);
-#if QGL_PRELOAD_GL_PATH
     if (!pl_prim_for_driver(x, p)) {
         pl_draw_gl(pl_ctx_qgl(x), p);
         if (!p->from_arrays)
             pl_prim_apply_current(p);
         return;
     }
-#else
-    (void)x;
-#endif
     pl_replay(p);
 }
 
 void pl_draw_listed(pl_ctx *x, pl_prim *p)
 {
-#if QGL_PRELOAD_GL_PATH
     struct pl_retained *r;
     if (p->native_list && !p->nmat && p->n && !pl_prim_for_driver(x, p)) {
         for (int a = 0; a < PL_A_COUNT; a++)
@@ -271,6 +260,5 @@ void pl_draw_listed(pl_ctx *x, pl_prim *p)
             return;
         }
     }
-#endif
     pl_draw_prim(x, p);
 }

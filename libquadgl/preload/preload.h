@@ -19,11 +19,7 @@
 #include <stdint.h>
 
 #include <quadgl/quadgl.h>
-#if QGL_PRELOAD_GL_PATH
 #include <quadgl/gl.h>
-#else
-typedef struct qgl_context qgl_context;
-#endif
 
 #include "pl_entries.h"
 
