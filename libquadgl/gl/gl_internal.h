@@ -367,6 +367,9 @@ void qgl__programs_free(qgl_context *ctx);
 /* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */
 int qgl__key_slots(const qgl__key *key);
 
+/* immediate.c: bytes of one component of a GL array type (0 for a type arrays cannot have). */
+size_t qgl__type_size(GLenum type);
+
 /* shader.c: the weights as a GLSL function, vec4 quad_weights(vec4 sx, vec4 sy), GLSL 1.20 and later. */
 extern const char qgl__glsl_weights[];
 /* shader.c: compile count sources as one shader / link a program; on failure 0, with the

@@ -419,7 +419,7 @@ static const struct {
      GL_TEXTURE_COORD_ARRAY_STRIDE, GL_TEXTURE_COORD_ARRAY_POINTER, GL_TEXTURE_COORD_ARRAY_BUFFER_BINDING, 0},
 };
 
-static size_t type_size(GLenum type)
+size_t qgl__type_size(GLenum type)
 {
     switch (type) {
     case GL_BYTE: case GL_UNSIGNED_BYTE: return 1;
@@ -452,11 +452,11 @@ static void read_array(qgl_context *c, int q, client_array *arr)
     arr->bgra = size == GL_BGRA;
     arr->type = (GLenum)type;
     arr->size = arr->bgra ? 4 : size;
-    if (!type_size(arr->type) || arr->size < 1 || arr->size > 4 || (buffer && !gl->GetBufferSubData)) {
+    if (!qgl__type_size(arr->type) || arr->size < 1 || arr->size > 4 || (buffer && !gl->GetBufferSubData)) {
         arr->size = 0; /* a layout we do not convert: ignored */
         return;
     }
-    arr->stride = stride ? (size_t)stride : (size_t)arr->size * type_size(arr->type);
+    arr->stride = stride ? (size_t)stride : (size_t)arr->size * qgl__type_size(arr->type);
     arr->ptr = ptr;
     arr->buffer = (GLuint)buffer;
 }
@@ -489,7 +489,7 @@ static int read_arrays(qgl_context *c)
 static float component(const unsigned char *e, GLenum type, int k, int normalized)
 {
     union { GLbyte b; GLshort s; GLushort us; GLint i; GLuint ui; GLfloat f; GLdouble d; } u;
-    size_t n = type_size(type);
+    size_t n = qgl__type_size(type);
     memcpy(&u, e + n * (size_t)k, n);
     switch (type) {
     case GL_BYTE: return normalized ? fmaxf(u.b / 127.0f, -1.0f) : u.b;
@@ -507,7 +507,7 @@ static float component(const unsigned char *e, GLenum type, int k, int normalize
 static void fetch_element(qgl_context *c, const client_array *arr, GLint i, int normalized, float out[4])
 {
     unsigned char tmp[32];
-    size_t bytes = (size_t)arr->size * type_size(arr->type);
+    size_t bytes = (size_t)arr->size * qgl__type_size(arr->type);
     const unsigned char *e = arr->ptr + (size_t)i * arr->stride;
     if (arr->buffer) {
         GLint saved = 0;

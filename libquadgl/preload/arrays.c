@@ -12,6 +12,7 @@
  * restart, an unknown type), and any draw the GL path would not take anyway, goes to the
  * driver as the program's own call. */
 #include "preload.h"
+#include "gl_internal.h" /* qgl__type_size */
 
 #include <stdlib.h>
 #include <string.h>
@@ -32,16 +33,6 @@ typedef struct pl_arrays {
     pl_array a[PL_ARR_COUNT]; /* indexed by PL_A_* and PL_ARR_VERTEX */
 } pl_arrays;
 
-static size_t pl_type_size(GLenum type)
-{
-    switch (type) {
-    case GL_BYTE: case GL_UNSIGNED_BYTE: return 1;
-    case GL_SHORT: case GL_UNSIGNED_SHORT: return 2;
-    case GL_INT: case GL_UNSIGNED_INT: case GL_FLOAT: return 4;
-    case GL_DOUBLE: return 8;
-    default: return 0;
-    }
-}
 
 typedef struct pl_array_query {
     GLenum enable, size, type, stride, pointer, binding;
@@ -71,7 +62,7 @@ static const pl_array_query pl_texcoord_query = {
 static int pl_array_fetch_buffer(pl_array *arr, GLuint buffer, size_t offset, size_t lo, size_t hi)
 {
     GLint saved = 0;
-    size_t bytes = (hi - lo) * arr->stride + (size_t)arr->size * pl_type_size(arr->type);
+    size_t bytes = (hi - lo) * arr->stride + (size_t)arr->size * qgl__type_size(arr->type);
     arr->copy = malloc(bytes ? bytes : 1);
     if (!arr->copy)
         return -1;
@@ -101,9 +92,9 @@ static int pl_array_read(pl_array *arr, const pl_array_query *q, size_t lo, size
     arr->bgra = (size == GL_BGRA);
     arr->size = arr->bgra ? 4 : size;
     arr->type = (GLenum)type;
-    if (!pl_type_size(arr->type) || arr->size < 1 || arr->size > 4)
+    if (!qgl__type_size(arr->type) || arr->size < 1 || arr->size > 4)
         return -1;
-    arr->stride = stride ? (size_t)stride : (size_t)arr->size * pl_type_size(arr->type);
+    arr->stride = stride ? (size_t)stride : (size_t)arr->size * qgl__type_size(arr->type);
     if (buffer)
         return pl_array_fetch_buffer(arr, (GLuint)buffer, (size_t)(uintptr_t)ptr, lo, hi);
     arr->base = (const unsigned char *)ptr + lo * arr->stride;
