@@ -104,6 +104,17 @@ static inline int qgl__cover(const qgl__quad *q, double X, double Y)
 #define QGL__HOT_INLINE static inline
 #endif
 
+/* NDC depth of the point with perspective weights persp: sum persp z / sum persp w. */
+static inline double qgl__zndc(const qgl__quad *q, const double persp[4])
+{
+    double zs = 0, ws = 0;
+    for (int i = 0; i < 4; i++) {
+        zs += persp[i] * q->clip[i][2];
+        ws += persp[i] * q->clip[i][3];
+    }
+    return zs / ws;
+}
+
 /* Facing f is culled by the draw's cull mode. */
 static inline int qgl__culled(const qgl__ctx *c, int f)
 {

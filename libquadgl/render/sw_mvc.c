@@ -199,12 +199,8 @@ static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const float clipf[4][4
                          screen);
     if (r == QGL_NONFINITE)
         return 0;
-    double zs = 0, ws = 0;
-    for (int i = 0; i < 4; i++) {
-        zs += persp[i] * q->clip[i][2];
-        ws += persp[i] * q->clip[i][3];
-    }
-    *zndc = zs / ws;
+    const double pd[4] = {persp[0], persp[1], persp[2], persp[3]};
+    *zndc = qgl__zndc(q, pd);
     for (int a = 0; a < q->nattr; a++) {
         float v = 0;
         for (int i = 0; i < 4; i++)

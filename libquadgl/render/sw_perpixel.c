@@ -18,12 +18,7 @@ static int weights_mvc64(void *user, const qgl__quad *q, double X, double Y, dou
     int r = qgl_weights(q->clip, qgl__to_ndc(X, fb->width), qgl__to_ndc(Y, fb->height), persp, screen);
     if (r == QGL_NONFINITE)
         return 0;
-    double zs = 0, ws = 0;
-    for (int i = 0; i < 4; i++) {
-        zs += persp[i] * q->clip[i][2];
-        ws += persp[i] * q->clip[i][3];
-    }
-    *zndc = zs / ws;
+    *zndc = qgl__zndc(q, persp);
     return 1;
 }
 
