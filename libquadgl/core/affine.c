@@ -49,21 +49,20 @@ static int normalized_corners(const double *src, int dim, double *dst)
     double m = 0;
     for (int i = 0; i < 4 * dim; i++)
         m = fmax(m, fabs(src[i]));
-    int e1 = qgl__exponent_of(m);
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < dim; k++)
-            dst[i * dim + k] = ldexp(src[i * dim + k], -e1) - ldexp(src[k], -e1);
-    int e2 = qgl__exponent_of(extent(dst, dim));
     for (int i = 0; i < 4 * dim; i++)
-        dst[i] = ldexp(dst[i], -e2);
+        dst[i] = src[i];
+    qgl__scale_pow2(dst, 4 * dim, qgl__exponent_of(m));
+    for (int i = 3; i >= 0; i--) /* corner 0 last: the others subtract its scaled value */
+        for (int k = 0; k < dim; k++)
+            dst[i * dim + k] -= dst[k];
+    qgl__scale_pow2(dst, 4 * dim, qgl__exponent_of(extent(dst, dim)));
     return 1;
 }
 
-QGL_API int qgl_is_planar(const double p[4][3], double rel_tol)
+/* Planarity of normalized corners (corner 0 at the origin, unit extent). */
+static int planar_normalized(const double q[4][3], double rel_tol)
 {
-    double q[4][3], d02[3], d13[3], n[3];
-    if (!(rel_tol >= 0) || !normalized_corners(&p[0][0], 3, &q[0][0]))
-        return 0;
+    double d02[3], d13[3], n[3];
     for (int k = 0; k < 3; k++) {
         d02[k] = q[2][k] - q[0][k];
         d13[k] = q[3][k] - q[1][k];
@@ -74,6 +73,12 @@ QGL_API int qgl_is_planar(const double p[4][3], double rel_tol)
      * the rounding of n and of the dot product. */
     double h = fabs(dot_n(n, q[1], 3));
     return h <= rel_tol * sqrt(dot_n(n, n, 3)) + 32 * DBL_EPSILON;
+}
+
+QGL_API int qgl_is_planar(const double p[4][3], double rel_tol)
+{
+    double q[4][3];
+    return rel_tol >= 0 && normalized_corners(&p[0][0], 3, &q[0][0]) && planar_normalized((const double(*)[3])q, rel_tol);
 }
 
 QGL_API int qgl_is_parallelogram(const double *q, int dim, double tol)
@@ -176,11 +181,11 @@ QGL_API int qgl_split_is_exact(const double p[4][3], const double *attr, int nat
         return 0;
     if (nattr > 0 && !qgl__all_finite(attr, 4 * nattr))
         return 0;
-    if (!qgl_is_planar(p, rel_tol))
-        return 0;
     double g[12];
     normalized_corners(&p[0][0], 3, g);
     const double (*q)[3] = (const double (*)[3])g;
+    if (!planar_normalized(q, rel_tol))
+        return 0;
     int i = best_corner(q);
     double b[3];
     if (!bary(q[i], q[(i + 1) & 3], q[(i + 2) & 3], q[(i + 3) & 3], 3, b))

@@ -32,6 +32,20 @@ static inline int qgl__exponent_of(double maxabs)
     return e;
 }
 
+/* a[i] *= 2^-e for n values, exactly as ldexp(a[i], -e) but by one multiplication (a library
+ * call per value costs more than the predicates it serves) wherever 2^-e is a normal double. */
+static inline void qgl__scale_pow2(double *a, int n, int e)
+{
+    if (e > -1000 && e < 1000) {
+        double s = ldexp(1.0, -e);
+        for (int i = 0; i < n; i++)
+            a[i] *= s;
+    } else {
+        for (int i = 0; i < n; i++)
+            a[i] = ldexp(a[i], -e);
+    }
+}
+
 /* d[i] = (v[i] - origin), scaled exactly by a power of two so max |d| is in [0.5, 1).
  * The first scaling makes the subtraction overflow-free; the second restores precision
  * when the points are tiny next to their distance from zero. Inputs must be finite. */
@@ -41,18 +55,18 @@ static inline void qgl__normalize2(const double (*v)[2], int n, const double ori
     for (int i = 0; i < n; i++)
         m = fmax(m, fmax(fabs(v[i][0]), fabs(v[i][1])));
     int e1 = qgl__exponent_of(m);
-    double o0 = ldexp(origin[0], -e1), o1 = ldexp(origin[1], -e1);
+    double o[2] = {origin[0], origin[1]};
+    qgl__scale_pow2(o, 2, e1);
     double m2 = 0;
     for (int i = 0; i < n; i++) {
-        d[i][0] = ldexp(v[i][0], -e1) - o0;
-        d[i][1] = ldexp(v[i][1], -e1) - o1;
+        d[i][0] = v[i][0], d[i][1] = v[i][1];
+        qgl__scale_pow2(d[i], 2, e1);
+        d[i][0] -= o[0], d[i][1] -= o[1];
         m2 = fmax(m2, fmax(fabs(d[i][0]), fabs(d[i][1])));
     }
     int e2 = qgl__exponent_of(m2);
-    for (int i = 0; i < n; i++) {
-        d[i][0] = ldexp(d[i][0], -e2);
-        d[i][1] = ldexp(d[i][1], -e2);
-    }
+    for (int i = 0; i < n; i++)
+        qgl__scale_pow2(d[i], 2, e2);
 }
 
 static inline double qgl__cross2(const double a[2], const double b[2])

@@ -515,6 +515,7 @@ static int draw_mvc(qgl_context *ctx, const qgl__state *st, qgl_topology topo, s
         return 0;
     if (*bound != (GLint)prog)
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
+    qgl__program_viewport(ctx, prog, st->viewport);
     if (topo == QGL_QUADS)
         ctx->gl.DrawArrays(GL_LINES_ADJACENCY, (GLint)(4 * q0), (GLsizei)(4 * nq));
     else

@@ -130,12 +130,12 @@ static void emit_grid(qgl__verts *out, const qgl__verts *v, const size_t idx[4],
         }
 }
 
-static double diameter_px(const double P[5][2], const GLint vp[4])
+static double diameter(const double P[5][2])
 {
     double d = 0;
     for (int a = 0; a < 4; a++)
         for (int b = a + 1; b < 4; b++)
-            d = fmax(d, hypot((P[a][0] - P[b][0]) * 0.5 * vp[2], (P[a][1] - P[b][1]) * 0.5 * vp[3]));
+            d = fmax(d, hypot(P[a][0] - P[b][0], P[a][1] - P[b][1]));
     return d;
 }
 
@@ -186,10 +186,13 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
 {
     size_t idx[4];
     double clip[4][4], P[5][2];
+    /* clip x and y scaled by the viewport's half size: screen points in pixels from its
+     * centre, so the weights are those of the quad as it appears (as on the shader path) */
+    const double scale[4] = {0.5 * st->viewport[2], 0.5 * st->viewport[3], 1, 1};
     for (int c = 0; c < 4; c++) {
         idx[c] = qgl__corner(topo, q, c);
         for (int k = 0; k < 4; k++)
-            clip[c][k] = ctx->clip[4 * idx[c] + k];
+            clip[c][k] = ctx->clip[4 * idx[c] + k] * scale[k];
     }
     int flat = st->shade_model == GL_FLAT ? qgl__flat_corner(ctx, topo) : -1;
     qgl_cover cov;
@@ -199,7 +202,7 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
     for (int c = 0; c < 4; c++)
         P[c][0] = clip[c][0] / clip[c][3], P[c][1] = clip[c][1] / clip[c][3];
     P[4][0] = cov.cross[0], P[4][1] = cov.cross[1];
-    double diam = diameter_px(P, st->viewport);
+    double diam = diameter(P);
     for (int t = 0; t < cov.ntri; t++)
         if (!subdivide_tri(ctx, clip, P, cov.tri[t], diam, v, idx, flat, out))
             return 0;

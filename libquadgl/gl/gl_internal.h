@@ -136,6 +136,7 @@
     X(void, UseProgram, (GLuint)) \
     X(GLint, GetUniformLocation, (GLuint, const GLchar *)) \
     X(void, Uniform1i, (GLint, GLint)) \
+    X(void, Uniform2f, (GLint, GLfloat, GLfloat)) \
     X(void, BindAttribLocation, (GLuint, GLuint, const GLchar *)) \
     X(void, VertexAttrib4fv, (GLuint, const GLfloat *)) \
     X(void, GetVertexAttribfv, (GLuint, GLenum, GLfloat *)) \
@@ -313,7 +314,14 @@ struct qgl_context {
     unsigned char *path;      /* per quad */
     uint32_t *idx;
     size_t clip_cap, path_cap, idx_cap;
-    struct { uint32_t hash; GLuint prog; int failed; qgl__key key; } programs[QGL__MAX_PROGRAMS];
+    struct {
+        uint32_t hash;
+        GLuint prog;
+        int failed;
+        GLint px_loc;  /* u_px: the viewport's half size, the scale of the weights' space */
+        float px[2];   /* its value last set (0: never) */
+        qgl__key key;
+    } programs[QGL__MAX_PROGRAMS];
     int nprograms, next_evict; /* cache (failures too, so a bad key is compiled once) */
     int material_arrays;      /* our VAO's material attribute arrays are enabled */
     struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
@@ -364,6 +372,8 @@ int qgl__flat_corner(qgl_context *ctx, qgl_topology topo);
  * it cannot be built (a warning is logged once). */
 GLuint qgl__program(qgl_context *ctx, const qgl__key *key);
 void qgl__programs_free(qgl_context *ctx);
+/* Give the bound program prog the viewport's half size (u_px) if it changed since last set. */
+void qgl__program_viewport(qgl_context *ctx, GLuint prog, const GLint viewport[4]);
 /* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */
 int qgl__key_slots(const qgl__key *key);
 

@@ -10,7 +10,8 @@
  * positions, colours and texture coordinates as generic attributes. The vertex shader turns
  * the corners into clip space and writes g_i = x_i W - X w_i, linear in clip space, so the
  * rasterizer's perspective interpolation hands the fragment shader W_f * s~_i(p), the same
- * positive multiple of the core's homogeneous s~_i the geometry shader path uses; the
+ * positive multiple of the core's homogeneous s~_i the geometry shader path uses (x and y in
+ * pixel units, scaled by the viewport's half size); the
  * corner values are constant over each triangle and reach the fragment shader unchanged.
  * The fragment shader is the core's robust formula in float. Programs are generated from
  * draw.c's state key (only the features this file knows: colour, flat, one 2D texture
@@ -61,7 +62,8 @@ static const char vs_src[] =
     "#if DEPTH\n"
     "varying vec4 v_w, v_z;\n"
     "#endif\n"
-    "vec2 g(vec4 C, vec4 X) { return C.xy * X.w - X.xy * C.w; }\n"
+    "uniform vec2 u_px;\n"
+    "vec2 g(vec4 C, vec4 X) { return (C.xy * X.w - X.xy * C.w) * u_px; }\n"
     "vec3 tex(vec4 t) { return (gl_TextureMatrix[0] * t).xyw; }\n"
     "void main() {\n"
     "    vec4 X = ftransform();\n"
@@ -465,6 +467,9 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     ctx->stats.draws++;
     if (*bound != (GLint)prog)
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
+    /* the weights in isotropic pixel units: x and y scaled by the viewport's half size */
+    ctx->gl.Uniform2f(ctx->gl.GetUniformLocation(prog, "u_px"), 0.5f * (float)st->viewport[2],
+                      0.5f * (float)st->viewport[3]);
     if (ctx->glsl120->vao)
         submit_arrays(ctx, &l, n);
     else

@@ -18,7 +18,9 @@
  * results flat (one mat4 per vec4 result: column i is corner i), and g_i = x_i W - X w_i
  * (clip corner i against the emitted vertex X), linear in clip space: perspective
  * interpolation makes them W_f * s~_i(p), a positive multiple of the core's homogeneous s~_i,
- * which leaves the weights unchanged. Clip distances come from the corners' eye positions
+ * which leaves the weights unchanged. x and y are scaled by the viewport's half size (u_px), so
+ * the weights are those of the quad as it appears in pixels, whatever the viewport's aspect
+ * (in NDC a wide window would squeeze the quad). Clip distances come from the corners' eye positions
  * (exact for planar quads, as the driver's own clipping); a non-planar quad is clipped per
  * fragment at its interpolated eye position instead.
  * Fragment shader: the core's robust weights in float (tangent of half angles in the
@@ -400,7 +402,7 @@ static void gs_source(sb *b, const qgl__key *k)
     if (k->clip && !frag_clip(k))
         put(b, "in vec4 q_eye[];\n");
     varyings(b, k, "out");
-    put(b, "vec4 C[5];\n");
+    put(b, "uniform vec2 u_px;\nvec4 C[5];\n");
     if (k->clip)
         put(b, "vec4 E[5];\n");
     /* the flat values are the same for every emitted vertex: gathered once */
@@ -424,8 +426,8 @@ static void gs_source(sb *b, const qgl__key *k)
                "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n");
     put(b, "}\n");
     put(b, "void emit(int k) {\n    vec4 X = C[k];\n    gl_Position = X;\n");
-    put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w);\n");
-    put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w);\n");
+    put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w) * u_px.xyxy;\n");
+    put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w) * u_px.xyxy;\n");
     for (int p = 0; p < 8; p++)
         if ((k->clip >> p) & 1)
             {
@@ -445,15 +447,21 @@ static void gs_source(sb *b, const qgl__key *k)
 /* ---- fragment shader ------------------------------------------------------------------------- */
 
 /* The core's weights (libquadgl/core/weights_impl.h) in float, four corners at once, shared
- * by both shader paths and written in GLSL 1.20 for that reason (no bvec mix: the branch
- * select is a 0/1 float vector, exact since both candidates are finite). sx, sy are the
- * corners' g_i, a positive multiple of the core's s~_i. One division instead of nine:
- * t_i = num_i / den_i (the non-cancelling form) and nu_i = (t_{i-1} + t_i) / r_i are scaled by
- * the common factor prod_j den_j r_j, which leaves only products. On an edge segment
- * (den_i = 0) this gives the edge's linear interpolation as the limit, with no test; only a
- * pixel centre on a corner (0 / 0) needs one. s is first scaled to a sum of 1 so that the
- * eight-fold products stay in range. */
+ * by both shader paths (GLSL 1.20 has no select by bvec: mix by a 0/1 vector there, exact
+ * since both candidates are finite). sx, sy are the corners' g_i, a positive multiple of the
+ * core's s~_i. One division instead of nine: t_i = num_i / den_i (the non-cancelling form)
+ * and nu_i = (t_{i-1} + t_i) / r_i are scaled by the common factor prod_j den_j r_j, which
+ * leaves only products. On an edge segment (den_i = 0) this gives the edge's linear
+ * interpolation as the limit, with no test. On a corner (r_i = 0) every product holds r_i or
+ * a den that vanishes with it, so all nu are 0 and adding 1 to nu_i gives the corner's own
+ * value; a branch would cost as much, since SIMD rasterizers run both sides. s is first
+ * scaled to a sum of 1 so that the eight-fold products stay in range. */
 const char qgl__glsl_weights[] =
+    "#if __VERSION__ >= 130\n"
+    "#define QGL_SELECT(a, b, c) mix(a, b, c)\n"
+    "#else\n"
+    "#define QGL_SELECT(a, b, c) mix(a, b, vec4(c))\n"
+    "#endif\n"
     "vec4 quad_weights(vec4 sx, vec4 sy) {\n"
     "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
     "    sx *= k;\n"
@@ -463,16 +471,11 @@ const char qgl__glsl_weights[] =
     "    vec4 A = sx * syn - sy * sxn;\n"
     "    vec4 D = sx * sxn + sy * syn;\n"
     "    vec4 P = rho * rho.yzwx;\n"
-    "    vec4 pd = vec4(greaterThan(D, vec4(0.0)));\n"
-    "    vec4 num = mix(P - D, A, pd), den = mix(A, P + D, pd);\n"
-    "    vec4 nu = (num.wxyz * den + num * den.wxyz) * (den.yzwx * den.zwxy) * (rho.yzwx * rho.zwxy * rho.wxyz);\n"
-    "    float s = dot(nu, vec4(1.0));\n"
-    "    if (s == 0.0) {\n"
-    "        float m = min(min(rho.x, rho.y), min(rho.z, rho.w));\n"
-    "        nu = vec4(lessThanEqual(rho, vec4(m)));\n"
-    "        s = dot(nu, vec4(1.0));\n"
-    "    }\n"
-    "    return nu / s;\n"
+    "    bvec4 pd = greaterThan(D, vec4(0.0));\n"
+    "    vec4 num = QGL_SELECT(P - D, A, pd), den = QGL_SELECT(A, P + D, pd);\n"
+    "    vec4 nu = (num.wxyz * den + num * den.wxyz) * (den.yzwx * den.zwxy) * (P.yzwx * rho.wxyz);\n"
+    "    nu += vec4(equal(rho, vec4(0.0)));\n"
+    "    return nu * (1.0 / dot(nu, vec4(1.0)));\n"
     "}\n";
 
 static const char fs_weights[] =
@@ -806,7 +809,23 @@ GLuint qgl__program(qgl_context *ctx, const qgl__key *key)
     ctx->programs[slot].key = *key;
     ctx->programs[slot].prog = prog;
     ctx->programs[slot].failed = !prog;
+    ctx->programs[slot].px_loc = prog ? ctx->gl.GetUniformLocation(prog, "u_px") : -1;
+    ctx->programs[slot].px[0] = ctx->programs[slot].px[1] = 0;
     return prog;
+}
+
+void qgl__program_viewport(qgl_context *ctx, GLuint prog, const GLint viewport[4])
+{
+    float hw = 0.5f * (float)viewport[2], hh = 0.5f * (float)viewport[3];
+    for (int i = 0; i < ctx->nprograms; i++)
+        if (ctx->programs[i].prog == prog) {
+            if (ctx->programs[i].px[0] != hw || ctx->programs[i].px[1] != hh) {
+                ctx->gl.Uniform2f(ctx->programs[i].px_loc, hw, hh);
+                ctx->programs[i].px[0] = hw;
+                ctx->programs[i].px[1] = hh;
+            }
+            return;
+        }
 }
 
 void qgl__programs_free(qgl_context *ctx)

@@ -33,6 +33,9 @@ typedef struct qgl__quad {
     double h[4][3];   /* window-homogeneous corners */
     double z[4];      /* clip z */
     double clip[4][4]; /* the clip corners as given (double) */
+    double px[4][4];   /* the clip corners with x, y times the half size: with a pixel centre
+                          less the centre of the framebuffer, the space the weights are computed
+                          in (isotropic pixels, as h; NDC would squeeze a non-square image) */
     const float *attr;
     int nattr;
     qgl__edge e[QGL__NEDGE];
@@ -206,10 +209,10 @@ void qgl__draw_invbilinear(qgl__ctx *c, const qgl__quad *q);
 void qgl__draw_projective(qgl__ctx *c, const qgl__quad *q);
 void qgl__draw_exact(qgl__ctx *c, const qgl__quad *q);
 
-/* NDC coordinate of a pixel-centre window coordinate along an axis of n pixels. */
-static inline double qgl__to_ndc(double X, int n)
+/* A pixel-centre window coordinate along an axis of n pixels, from the axis' centre (px). */
+static inline double qgl__centred(double X, int n)
 {
-    return 2.0 * X / n - 1.0;
+    return X - 0.5 * n;
 }
 
 #endif

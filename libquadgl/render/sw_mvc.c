@@ -195,7 +195,7 @@ static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const float clipf[4][4
                          float *attr, double *zndc)
 {
     float persp[4], screen[4];
-    int r = qgl_weightsf(clipf, (float)qgl__to_ndc(X, c->fb->width), (float)qgl__to_ndc(Y, c->fb->height), persp,
+    int r = qgl_weightsf(clipf, (float)qgl__centred(X, c->fb->width), (float)qgl__centred(Y, c->fb->height), persp,
                          screen);
     if (r == QGL_NONFINITE)
         return 0;
@@ -253,7 +253,7 @@ void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
         z[i] = (float)q->clip[i][2];
         w[i] = (float)q->clip[i][3];
         for (int k = 0; k < 4; k++)
-            clipf[i][k] = (float)q->clip[i][k];
+            clipf[i][k] = (float)q->px[i][k];
     }
     span_coef s;
     span_out o;

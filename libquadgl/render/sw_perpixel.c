@@ -1,8 +1,8 @@
 /* sw_perpixel.c: the per-pixel comparison methods mvc64, invbilinear and projective.
  *
  * All three share eq. (12) coverage (qgl__quad_scan) and differ only in the weights:
- * mvc64 asks qgl_weights (double, exact limits on corners and edges) at the pixel's NDC
- * position; invbilinear inverts the bilinear map of the projected screen quad (Quilez) and
+ * mvc64 asks qgl_weights (double, exact limits on corners and edges) at the pixel's position
+ * (in pixels, as the fast mvc); invbilinear inverts the bilinear map of the projected screen quad (Quilez) and
  * interpolates bilinearly in screen space, with no perspective correction, as the original
  * shader does; projective maps the screen quad to the unit square by the homography through
  * its four corners (Heckbert's square-to-quad, inverted by its adjugate) and interpolates
@@ -15,7 +15,7 @@ static int weights_mvc64(void *user, const qgl__quad *q, double X, double Y, dou
 {
     const qgl_sw_fb *fb = user;
     double screen[4];
-    int r = qgl_weights(q->clip, qgl__to_ndc(X, fb->width), qgl__to_ndc(Y, fb->height), persp, screen);
+    int r = qgl_weights(q->px, qgl__centred(X, fb->width), qgl__centred(Y, fb->height), persp, screen);
     if (r == QGL_NONFINITE)
         return 0;
     *zndc = qgl__zndc(q, persp);

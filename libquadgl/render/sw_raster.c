@@ -82,6 +82,10 @@ void qgl__quad_setup(qgl__quad *q, const qgl_sw_fb *fb, const float *clip, const
         for (int k = 0; k < 4; k++)
             q->clip[i][k] = clip[4 * i + k];
         to_window(fb, q->clip[i], q->h[i]);
+        q->px[i][0] = q->clip[i][0] * (0.5 * fb->width);
+        q->px[i][1] = q->clip[i][1] * (0.5 * fb->height);
+        q->px[i][2] = q->clip[i][2];
+        q->px[i][3] = q->clip[i][3];
         q->z[i] = q->clip[i][2];
     }
     q->attr = attr;

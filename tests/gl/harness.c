@@ -47,7 +47,7 @@ int th_init(th_ctx *t, int w, int h, const qgl_gl_desc *desc)
     if (!t->qgl)
         return 77;
     qgl_gl_make_current(t->qgl);
-    glViewport(0, 0, w, h);
+    th_viewport(t, 0, 0, w, h);
     return 0;
 }
 
@@ -90,10 +90,26 @@ void th_write(const th_ctx *t, const unsigned char *img, const char *name)
     fclose(f);
 }
 
+void th_viewport(th_ctx *t, int x, int y, int w, int h)
+{
+    glViewport(x, y, w, h);
+    t->vp[0] = x, t->vp[1] = y, t->vp[2] = w, t->vp[3] = h;
+}
+
+int th_weights(const th_ctx *t, const double clip[4][4], int x, int y, double lam[4], double scr[4])
+{
+    double hw = 0.5 * t->vp[2], hh = 0.5 * t->vp[3], px[4][4];
+    for (int i = 0; i < 4; i++) {
+        px[i][0] = clip[i][0] * hw, px[i][1] = clip[i][1] * hh;
+        px[i][2] = clip[i][2], px[i][3] = clip[i][3];
+    }
+    return qgl_weights(px, x + 0.5 - t->vp[0] - hw, y + 0.5 - t->vp[1] - hh, lam, scr);
+}
+
 int th_ref_color(const th_ctx *t, const double clip[4][4], const float a[4][4], int x, int y, float out[4])
 {
-    double nx = (x + 0.5) / t->w * 2 - 1, ny = (y + 0.5) / t->h * 2 - 1, lam[4];
-    int r = qgl_weights(clip, nx, ny, lam, NULL);
+    double lam[4];
+    int r = th_weights(t, clip, x, y, lam, NULL);
     for (int k = 0; k < 4; k++)
         out[k] = (float)(lam[0] * a[0][k] + lam[1] * a[1][k] + lam[2] * a[2][k] + lam[3] * a[3][k]);
     return r;

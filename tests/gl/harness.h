@@ -8,6 +8,7 @@
 
 typedef struct th_ctx {
     int w, h;
+    int vp[4]; /* the viewport th_viewport last set (initially the whole framebuffer) */
     unsigned char *buf; /* RGBA, row 0 at the bottom */
     void *osmesa;
     qgl_context *qgl;
@@ -30,6 +31,12 @@ void th_write(const th_ctx *t, const unsigned char *img, const char *name);
 extern int th_failures;
 void th_check(int cond, const char *fmt, ...);
 
+/* glViewport, remembered for the references below. */
+void th_viewport(th_ctx *t, int x, int y, int w, int h);
+/* The core's double weights (perspective, and screen if not NULL) at the centre of pixel
+ * (x, y) for clip corners clip under the viewport: x, y scaled to isotropic pixels, the space
+ * quadgl computes them in (NDC would squeeze a non-square viewport); the core's return code. */
+int th_weights(const th_ctx *t, const double clip[4][4], int x, int y, double lam[4], double scr[4]);
 /* Per-pixel reference colour from the core's double weights: attribute a[corner][4] at the
  * centre of pixel (x, y) of a quad with clip corners clip; returns the core's return code. */
 int th_ref_color(const th_ctx *t, const double clip[4][4], const float a[4][4], int x, int y, float out[4]);

@@ -160,8 +160,8 @@ static void against_core(th_ctx *t, const struct shape *s)
             stray += px[3] != 0 && !any_in;
             if (!all_in)
                 continue;
-            double nx = (x + 0.5) / t->w * 2 - 1, ny = (y + 0.5) / t->h * 2 - 1, lam[4], scr[4], z = 0;
-            qgl_weights(clip, nx, ny, lam, scr);
+            double lam[4], scr[4], z = 0;
+            th_weights(t, clip, x, y, lam, scr);
             for (int i = 0; i < 4; i++)
                 z += scr[i] * (clip[i][2] / clip[i][3] * 0.5 + 0.5);
             if (!(z > 0.001 && z < 0.999))
@@ -394,11 +394,15 @@ static int gl21_run(void)
         return 77; /* the override is not honoured by this Mesa */
     th_check(qgl_gl_shader_level(t.qgl) == 120, "GL 2.1: expected the GLSL 1.20 path");
     qgl_gl_make_current(t.qgl);
-    glViewport(0, 0, t.w, t.h);
+    th_viewport(&t, 0, 0, t.w, t.h);
     glClearColor(0, 0, 0, 0);
     for (int i = 0; i < NSHAPES; i++)
         if (!shapes[i].tex)
             against_core(&t, &shapes[i]);
+    /* a wide viewport: weights in square pixels, as on the geometry shader path */
+    th_viewport(&t, 0, 48, t.w, 160);
+    against_core(&t, &shapes[0]);
+    th_viewport(&t, 0, 0, t.w, t.h);
     common(&t, 0);
     th_free(&t);
     return th_failures ? 1 : 0;

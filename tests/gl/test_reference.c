@@ -1,5 +1,6 @@
 /* test_reference: quads of every shape drawn by the shader path against the core's double
- * weights per pixel (convex, concave, bow-tie, perspective, non-planar with depth).
+ * weights per pixel (convex, concave, bow-tie, corners on pixel centres, a wide viewport,
+ * perspective, non-planar with depth).
  *
  * Pixels whose centre and 8 neighbours are inside the quad must match the reference colour
  * within 2/255 (float weights against double); drawn pixels must lie inside or on the
@@ -39,8 +40,8 @@ static void compare(const th_ctx *t, const float p[4][3], const char *name, int 
                 bad_cov++;
             if (!all_in)
                 continue;
-            double nx = (x + 0.5) / t->w * 2 - 1, ny = (y + 0.5) / t->h * 2 - 1, lam[4], scr[4], z = 0;
-            qgl_weights(clip, nx, ny, lam, scr);
+            double lam[4], scr[4], z = 0;
+            th_weights(t, clip, x, y, lam, scr);
             for (int i = 0; i < 4; i++)
                 z += scr[i] * (clip[i][2] / clip[i][3] * 0.5 + 0.5);
             if (!(z > 0.001 && z < 0.999))
@@ -66,6 +67,36 @@ static void compare(const th_ctx *t, const float p[4][3], const char *name, int 
            name, inner, worst, worst_depth, bad_col, bad_cov, missing, bad_depth);
     th_check(inner > 500, "%s: too few inner pixels (%d)", name, inner);
     th_check(!bad_col && !bad_cov && !missing && !bad_depth, "%s: mismatches", name);
+}
+
+/* Corners exactly on pixel centres (orthographic, identity matrices): there every product of
+ * the shader's weights vanishes, and a corner pixel the rasterizer draws must show the
+ * corner's own colour. */
+static void run_pixel_corners(th_ctx *t)
+{
+    static const int pix[4][2] = {{20, 30}, {230, 40}, {210, 220}, {40, 200}};
+    float p[4][3];
+    for (int i = 0; i < 4; i++) {
+        p[i][0] = (float)((pix[i][0] + 0.5) / t->w * 2 - 1);
+        p[i][1] = (float)((pix[i][1] + 0.5) / t->h * 2 - 1);
+        p[i][2] = 0;
+    }
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    sc_draw_quad(p);
+    glFinish();
+    th_write(t, NULL, "ref_pixel_corners");
+    int drawn = 0;
+    for (int i = 0; i < 4; i++) {
+        const unsigned char *px = th_px(t, pix[i][0], pix[i][1]);
+        if (!(px[0] || px[1] || px[2]))
+            continue;
+        drawn++;
+        for (int k = 0; k < 3; k++)
+            th_check(fabs(px[k] - sc_corner_colors[i][k] * 255.0) <= 2.0, "corner %d on a pixel centre: %d/255, not %.0f",
+                     i, px[k], sc_corner_colors[i][k] * 255.0);
+    }
+    printf("%-14s %d of 4 corner pixels drawn, each with its corner's colour\n", "ref_pixel_corners", drawn);
+    th_check(drawn > 0, "no corner pixel drawn");
 }
 
 static void run_flat(th_ctx *t, const float p[4][3], const char *name)
@@ -96,6 +127,11 @@ int main(void)
     run_flat(&t, concave, "ref_concave");
     run_flat(&t, bowtie, "ref_bowtie");
     run_flat(&t, bowtie2, "ref_bowtie2");
+    run_pixel_corners(&t);
+    /* a wide viewport: the weights are those of the quad as it appears, in square pixels */
+    th_viewport(&t, 0, 48, 256, 160);
+    run_flat(&t, convex, "ref_wide_viewport");
+    th_viewport(&t, 0, 0, 256, 256);
 
     /* perspective: a planar trapezoid seen obliquely, and a non-planar quad (depth) */
     glMatrixMode(GL_PROJECTION);
@@ -128,7 +164,7 @@ int main(void)
 
     qgl_gl_stats_t st;
     qgl_gl_stats(t.qgl, &st);
-    th_check(st.mvc == 7 && st.quads == 7, "stats: %llu quads, %llu by mvc", (unsigned long long)st.quads,
+    th_check(st.mvc == 9 && st.quads == 9, "stats: %llu quads, %llu by mvc", (unsigned long long)st.quads,
              (unsigned long long)st.mvc);
     th_free(&t);
     return th_failures ? 1 : 0;

@@ -6,7 +6,8 @@
  *    bilinear:N (cells split around their centres) by less than 1e-5 on a non-planar quad,
  *    while each split changes (it becomes the other split);
  *  - mvc (float, spans) against qgl_weights (double) at every covered pixel, with the
- *    attributes set to the unit vectors so that the colour is the weight vector itself. */
+ *    attributes set to the unit vectors so that the colour is the weight vector itself, also
+ *    on a non-square image (weights in square pixels). */
 #include "render_test.h"
 
 #define W 64
@@ -116,22 +117,24 @@ static void rotation(void)
     qgl_sw_fb_destroy(fb);
 }
 
-/* mvc's float weights against qgl_weights at every covered pixel. */
-static void against_weights(const char *what, const char *method, const float clip[16], double tol)
+/* mvc's float weights against qgl_weights at every covered pixel of a W x h image, the
+ * reference in isotropic pixel units (clip x, y times the half size; on a non-square image
+ * NDC would squeeze the quad). */
+static void against_weights(const char *what, const char *method, const float clip[16], double tol, int h)
 {
     static const float unit[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    qgl_sw_fb *fb = test_fb(W, W, 4);
+    qgl_sw_fb *fb = test_fb(W, h, 4);
     test_draw(fb, method, clip, unit, 4, 1, QGL_SW_DEPTH_ALWAYS, QGL_SW_CULL_NONE);
     double cd[4][4], worst = 0;
     for (int i = 0; i < 16; i++)
-        cd[i / 4][i % 4] = clip[i];
+        cd[i / 4][i % 4] = clip[i] * (i % 4 == 0 ? 0.5 * W : i % 4 == 1 ? 0.5 * h : 1);
     int n = 0;
-    for (int y = 0; y < W; y++)
+    for (int y = 0; y < h; y++)
         for (int x = 0; x < W; x++) {
             if (!fb->count[y * W + x])
                 continue;
             double persp[4];
-            qgl_weights((const double(*)[4])cd, (x + 0.5) * 2 / W - 1, (y + 0.5) * 2 / W - 1, persp, NULL);
+            qgl_weights((const double(*)[4])cd, x + 0.5 - 0.5 * W, y + 0.5 - 0.5 * h, persp, NULL);
             for (int k = 0; k < 4; k++)
                 worst = fmax(worst, fabs(fb->color[(y * W + x) * 4 + k] - persp[k]));
             n++;
@@ -190,13 +193,15 @@ static void weights(void)
     /* float weights: a few float roundings of the weights (<= 1), plus the span's finite
      * differences, whose error grows with the span's size against rho near a corner */
     const double tol = 2e-6;
-    against_weights("convex", "mvc", convex, tol);
-    against_weights("concave", "mvc", concave, tol);
-    against_weights("bowtie", "mvc", bowtie, tol);
-    against_weights("collapsed", "mvc", collapsed, tol);
-    against_weights("behind", "mvc", behind, tol);
-    against_weights("convex", "mvc64", convex, 1e-6);
-    against_weights("behind", "mvc64", behind, 1e-6);
+    against_weights("convex", "mvc", convex, tol, W);
+    against_weights("concave", "mvc", concave, tol, W);
+    against_weights("bowtie", "mvc", bowtie, tol, W);
+    against_weights("collapsed", "mvc", collapsed, tol, W);
+    against_weights("behind", "mvc", behind, tol, W);
+    against_weights("convex", "mvc64", convex, 1e-6, W);
+    against_weights("behind", "mvc64", behind, 1e-6, W);
+    against_weights("wide", "mvc", convex, tol, W / 2);
+    against_weights("wide", "mvc64", convex, 1e-6, W / 2);
     plain_store("convex", convex);
     plain_store("bow-tie", bowtie);
     plain_store("behind", behind);
