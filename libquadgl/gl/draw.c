@@ -509,24 +509,30 @@ static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology
 }
 
 /* The geometry shader path's key: the state's fixed-function key plus what the run adds. */
-static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, unsigned char path, qgl__key *k)
+static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, unsigned char path, unsigned mask,
+                    qgl__key *k)
 {
     *k = st->ffp;
     if (st->shade_model == GL_FLAT) {
         k->flags |= QGL__KF_FLAT;
         k->corner = (uint8_t)qgl__flat_corner(ctx, topo);
     }
+    /* Unlit colours nobody gave per vertex are the current ones, equal at every corner: the
+     * flat program passes one value instead of four and interpolates nothing. */
+    if (!(k->flags & QGL__KF_LIGHTING) && !(mask & QGL__A_COLOR) &&
+        (!(k->flags & QGL__KF_COLOR_SUM) || !(mask & QGL__A_COLOR2)))
+        k->flags |= QGL__KF_FLAT;
     if (path & QGL__P_DEPTH)
         k->flags |= QGL__KF_DEPTH;
     if (path & QGL__P_EXTERNAL)
         k->flags |= QGL__KF_DISCARD;
 }
 
-static int draw_mvc(qgl_context *ctx, const qgl__state *st, qgl_topology topo, size_t q0, size_t nq,
-                    unsigned char path, GLint *bound)
+static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
+                    size_t nq, unsigned char path, GLint *bound)
 {
     qgl__key key;
-    ffp_key(ctx, st, topo, path, &key);
+    ffp_key(ctx, st, topo, path, v->mask, &key);
     GLuint prog = qgl__program(ctx, &key);
     if (!prog)
         return 0;
@@ -727,7 +733,7 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
         else if (!ctx->has_vao)
             draw_replay(ctx, &st, v, topo, q0, q1 - q0, p);
         else if ((p & 15) == QGL__P_MVC) {
-            if (!draw_mvc(ctx, &st, topo, q0, q1 - q0, p, &bound)) {
+            if (!draw_mvc(ctx, &st, v, topo, q0, q1 - q0, p, &bound)) {
                 recount_as_subdiv(ctx, q1 - q0);
                 draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
             }
