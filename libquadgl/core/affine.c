@@ -36,7 +36,7 @@ static double extent(const double *p, int dim)
     double m = 0;
     for (int i = 1; i < 4; i++)
         for (int k = 0; k < dim; k++)
-            m = fmax(m, fabs(p[i * dim + k] - p[k]));
+            m = qgl__max(m, fabs(p[i * dim + k] - p[k]));
     return m;
 }
 
@@ -48,7 +48,7 @@ static int normalized_corners(const double *src, int dim, double *dst)
         return 0;
     double m = 0;
     for (int i = 0; i < 4 * dim; i++)
-        m = fmax(m, fabs(src[i]));
+        m = qgl__max(m, fabs(src[i]));
     for (int i = 0; i < 4 * dim; i++)
         dst[i] = src[i];
     qgl__scale_pow2(dst, 4 * dim, qgl__exponent_of(m));
@@ -166,8 +166,8 @@ static int attr_affine(const double *attr, int nattr, int i, const double b[3], 
     for (int k = 0; k < nattr; k++) {
         double a0 = attr[i * nattr + k], a1 = attr[i1 * nattr + k], a2 = attr[i2 * nattr + k],
                a3 = attr[i3 * nattr + k];
-        double lo = fmin(fmin(a0, a1), fmin(a2, a3)), hi = fmax(fmax(a0, a1), fmax(a2, a3));
-        double mag = fmax(fabs(lo), fabs(hi));
+        double lo = qgl__min(qgl__min(a0, a1), qgl__min(a2, a3)), hi = qgl__max(qgl__max(a0, a1), qgl__max(a2, a3));
+        double mag = qgl__max(fabs(lo), fabs(hi));
         double pred = b[0] * a1 + b[1] * a2 + b[2] * a3;
         if (!(fabs(pred - a0) <= rel_tol * (hi - lo) + 16 * DBL_EPSILON * (1 + bsum) * mag))
             return 0;

@@ -15,6 +15,17 @@
 /* Orientations of normalized points at or below this are treated as zero (collinear). */
 #define QGL__COLLINEAR_EPS (64.0 * DBL_EPSILON)
 
+/* max and min of finite values (fmax and fmin are library calls here: they must order NaNs) */
+static inline double qgl__max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline double qgl__min(double a, double b)
+{
+    return a < b ? a : b;
+}
+
 static inline int qgl__all_finite(const double *a, int n)
 {
     for (int i = 0; i < n; i++)
@@ -51,9 +62,9 @@ static inline void qgl__scale_pow2(double *a, int n, int e)
  * when the points are tiny next to their distance from zero. Inputs must be finite. */
 static inline void qgl__normalize2(const double (*v)[2], int n, const double origin[2], double (*d)[2])
 {
-    double m = fmax(fabs(origin[0]), fabs(origin[1]));
+    double m = qgl__max(fabs(origin[0]), fabs(origin[1]));
     for (int i = 0; i < n; i++)
-        m = fmax(m, fmax(fabs(v[i][0]), fabs(v[i][1])));
+        m = qgl__max(m, qgl__max(fabs(v[i][0]), fabs(v[i][1])));
     int e1 = qgl__exponent_of(m);
     double o[2] = {origin[0], origin[1]};
     qgl__scale_pow2(o, 2, e1);
@@ -62,7 +73,7 @@ static inline void qgl__normalize2(const double (*v)[2], int n, const double ori
         d[i][0] = v[i][0], d[i][1] = v[i][1];
         qgl__scale_pow2(d[i], 2, e1);
         d[i][0] -= o[0], d[i][1] -= o[1];
-        m2 = fmax(m2, fmax(fabs(d[i][0]), fabs(d[i][1])));
+        m2 = qgl__max(m2, qgl__max(fabs(d[i][0]), fabs(d[i][1])));
     }
     int e2 = qgl__exponent_of(m2);
     for (int i = 0; i < n; i++)

@@ -6,7 +6,9 @@
  * polygon mode line/point and select/feedback render modes go to the driver as quads; in
  * AUTO a quad the diagonal split renders exactly (planar, attributes affine in object space)
  * or invisibly (bounding box under invisible_area_px) is split by the driver; the rest takes
- * the shader path when the state is modelled and the CPU subdivision otherwise. Smooth
+ * the shader path when the state is modelled and the CPU subdivision otherwise. A short run of
+ * such split quads next to shader-path quads joins their run (the same picture, one draw
+ * fewer). Smooth
  * lighting is exact too where it reads no position (directional lights, infinite viewer) and
  * corners with equal attributes group along parallel edges (a cylinder's quads): the lit
  * colour is then affine over the quad. A retained batch (retain.c) brings these per-quad
@@ -304,11 +306,11 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         return QGL__P_SUBDIV;
     if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
         bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
-        return QGL__P_SPLIT;
+        return QGL__P_SPLIT | QGL__P_EITHER;
     int planar = 0;
     int exact = quad_exact(st, v, idx, facts, q, &planar);
     if (ctx->method == QGL_METHOD_AUTO && exact)
-        return QGL__P_SPLIT;
+        return QGL__P_SPLIT | QGL__P_EITHER;
     if (!st->modelled || (!planar && st->polygon_offset))
         return QGL__P_SUBDIV;
     /* With a corner behind the eye the cover is the clipped split; its rasterized depth is the
@@ -648,6 +650,39 @@ static void draw_glsl120(qgl_context *ctx, const qgl__state *st, const qgl__vert
 
 /* ---- the batch -------------------------------------------------------------------------------- */
 
+/* Split runs shorter than this between shader-path quads join them. */
+#define QGL__SHORT_RUN 32
+
+static int joins_shader_run(unsigned char p)
+{
+    return (p & 15) == QGL__P_MVC && !(p & QGL__P_EXTERNAL);
+}
+
+/* A short run of quads the split may draw (exact, or too small to differ) next to quads on
+ * the shader path is drawn with them: the picture is the same, and each extra draw (with its
+ * program switch and state round trip) costs more than shading a few small quads. */
+static void merge_runs(unsigned char *path, size_t nq)
+{
+    for (size_t a = 0; a < nq;) {
+        if (!(path[a] & QGL__P_EITHER)) {
+            a++;
+            continue;
+        }
+        size_t b = a;
+        while (b < nq && (path[b] & QGL__P_EITHER))
+            b++;
+        unsigned char p = QGL__P_SPLIT;
+        if (b - a < QGL__SHORT_RUN) {
+            if (a > 0 && joins_shader_run(path[a - 1]))
+                p = path[a - 1];
+            else if (b < nq && joins_shader_run(path[b]))
+                p = path[b];
+        }
+        memset(path + a, p, b - a);
+        a = b;
+    }
+}
+
 static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
                 const qgl__facts *facts)
 {
@@ -667,6 +702,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
             p = QGL__P_SUBDIV;
         ctx->path[q] = p;
     }
+    merge_runs(ctx->path, nq);
     return 1;
 }
 

@@ -334,6 +334,9 @@ struct qgl_context {
 enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3 };
 /* Bits on top of QGL__P_MVC in the per-quad path byte. */
 enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5 };
+/* While planning: a split quad that the shader path would draw the same (AUTO: exact, or too
+ * small to differ), free to join a neighbouring shader-path run. */
+enum { QGL__P_EITHER = 1 << 6 };
 
 /* Per-quad facts that do not depend on the GL state (cached by retained batches). */
 enum {

@@ -1,0 +1,117 @@
+/* test_runs: quads too small to differ from the split, between quads on the shader path, are
+ * drawn with them (one draw, not one per run) in AUTO, and long runs of them still go to the
+ * driver's split.
+ *
+ * 48 quad strips alternate a large quad with random corner colours (shader path) and a sliver
+ * of 0.5 x 4 pixels (split, or free to join): AUTO must draw each strip in one draw with every quad on the shader path, and its
+ * picture must equal method MVC's exactly (the same program over the same quads). A second
+ * frame draws a strip of 100 slivers (0.25 x 8 pixels) followed by one large quad: the slivers are a run long
+ * enough to be worth the driver's own draw, so AUTO splits them (2 draws), and its picture
+ * equals the driver's quads there within 0 (the split is what the driver does) and method MVC
+ * on the large quad. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scenes.h"
+
+static float hash(int i, int k)
+{
+    unsigned h = ((unsigned)i * 73856093u) ^ ((unsigned)k * 19349663u);
+    return (float)((h * 2654435761u) >> 8 & 0xff) / 255.0f;
+}
+
+static void vertex(int i, float x, float y)
+{
+    qglColor3f(hash(i, 0), hash(i, 1), hash(i, 2));
+    qglVertex2f(x, y);
+}
+
+/* Strip r: pairs at x = x0, x0 + big, x0 + big + sliver, ... (alternating widths). */
+static void alternating(void)
+{
+    const float px = 2.0f / 256;
+    for (int r = 0; r < 48; r++) {
+        float y0 = -0.95f + r * 0.04f, y1 = y0 + 0.03f, x = -0.95f;
+        qglBegin(GL_QUAD_STRIP);
+        for (int i = 0; i < 12; i++) {
+            vertex(100 * r + 2 * i, x, y0);
+            vertex(100 * r + 2 * i + 1, x, y1);
+            x += i % 2 ? 0.5f * px : 0.15f;
+        }
+        qglEnd();
+    }
+}
+
+static void long_run(void)
+{
+    const float px = 2.0f / 256;
+    qglBegin(GL_QUAD_STRIP);
+    float x = -0.9f;
+    for (int i = 0; i <= 101; i++) {
+        vertex(2 * i, x, -4 * px);
+        vertex(2 * i + 1, x, 4 * px);
+        x += i < 100 ? 0.25f * px : 0.9f;
+    }
+    qglEnd();
+}
+
+static unsigned char *frame(th_ctx *t, qgl_method m, void (*draw)(void), qgl_gl_stats_t *st)
+{
+    qgl_gl_set_method(t->qgl, m);
+    qgl_gl_reset_stats(t->qgl);
+    glClear(GL_COLOR_BUFFER_BIT);
+    draw();
+    qgl_gl_stats(t->qgl, st);
+    return th_snapshot(t);
+}
+
+static int differ(const th_ctx *t, const unsigned char *a, const unsigned char *b, int x0, int x1)
+{
+    int n = 0;
+    for (int y = 0; y < t->h; y++)
+        for (int x = x0; x < x1; x++)
+            n += memcmp(a + 4 * (y * t->w + x), b + 4 * (y * t->w + x), 3) != 0;
+    return n;
+}
+
+int main(void)
+{
+    th_ctx t;
+    int rc = th_init(&t, 256, 256, NULL);
+    if (rc)
+        return rc;
+    if (!qgl_gl_shader_level(t.qgl))
+        return 77;
+    glClearColor(0, 0, 0, 0);
+    qgl_gl_stats_t sa, sm, ss;
+    unsigned char *a = frame(&t, QGL_METHOD_AUTO, alternating, &sa);
+    unsigned char *m = frame(&t, QGL_METHOD_MVC, alternating, &sm);
+    int d = differ(&t, a, m, 0, t.w);
+    printf("alternating: auto %llu quads in %llu draws (mvc %llu, split %llu); differs from MVC in %d px\n",
+           (unsigned long long)sa.quads, (unsigned long long)sa.draws, (unsigned long long)sa.mvc,
+           (unsigned long long)sa.split, d);
+    th_write(&t, a, "runs_alternating");
+    th_check(sa.quads == 48 * 11 && sa.mvc == sa.quads && sa.draws == 48, "alternating: slivers not joined");
+    th_check(d == 0, "alternating: AUTO differs from MVC");
+    free(a);
+    free(m);
+
+    a = frame(&t, QGL_METHOD_AUTO, long_run, &sa);
+    m = frame(&t, QGL_METHOD_MVC, long_run, &sm);
+    unsigned char *s = frame(&t, QGL_METHOD_SPLIT, long_run, &ss);
+    /* the slivers cover pixels 12.8 to 37.8, the large quad 37.8 to 153 */
+    int ds = differ(&t, a, s, 0, 37), dm = differ(&t, a, m, 39, t.w);
+    printf("long run: auto %llu quads in %llu draws (mvc %llu, split %llu); slivers differ from the split in %d px, "
+           "the large quad from MVC in %d px\n",
+           (unsigned long long)sa.quads, (unsigned long long)sa.draws, (unsigned long long)sa.mvc,
+           (unsigned long long)sa.split, ds, dm);
+    th_write(&t, a, "runs_long");
+    th_check(sa.quads == 101 && sa.split == 100 && sa.mvc == 1 && sa.draws == 2, "long run: counters");
+    th_check(ds == 0 && dm == 0, "long run: picture");
+    free(a);
+    free(m);
+    free(s);
+    th_free(&t);
+    return th_failures ? 1 : 0;
+}
