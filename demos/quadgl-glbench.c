@@ -169,6 +169,24 @@ static void mesh(int native)
     }
 }
 
+/* A flat slice coloured by a smooth map of the position, as a visualisation colours a field:
+ * over one quad the colours are nearly affine, and the split differs invisibly. */
+static void slice(int native)
+{
+    enum { N = 64 };
+    glEnable(GL_DEPTH_TEST);
+    for (int j = 0; j < N; j++) {
+        B(native)(GL_QUAD_STRIP);
+        for (int i = 0; i <= N; i++)
+            for (int k = 0; k < 2; k++) {
+                float x = -1 + 2.0f * i / N, y = -1 + 2.0f * (j + k) / N;
+                C4(native)(0.5f + 0.4f * sinf(2 * x), 0.5f + 0.4f * cosf(3 * y), 0.5f + 0.4f * sinf(x + y), 1);
+                V3(native)(x, y, 0);
+            }
+        E(native)();
+    }
+}
+
 /* 250 000 quads of about 1.5 x 1.5 pixels: 1M vertices in one glBegin/glEnd. */
 static void tiny(int native)
 {
@@ -266,6 +284,7 @@ int main(int argc, char **argv)
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("mesh, one draw per strip (auto)", q1, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
+    report("colour-mapped slice 64x64 (auto)", q, QGL_METHOD_AUTO, setup_persp, slice, frames, 1.1);
     report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.3);
     report("sphere 48x24 textured (mvc)", q, QGL_METHOD_MVC, setup_persp, sphere, frames, 99);
     qgl_gl_destroy(q);

@@ -15,7 +15,8 @@ extern "C" {
 #endif
 
 /* How quads are drawn. AUTO plans per quad: the driver's split where it is exact (planar,
- * attributes affine in object space) or invisible (tiny on screen), the smooth path
+ * attributes affine in object space) or invisible (tiny on screen, or a planar quad whose split
+ * differs from the smooth result by less than the output shows: split_error), the smooth path
  * otherwise. MVC forces the smooth path, SPLIT the driver's own quads, SUBDIV the CPU
  * subdivision fallback. */
 typedef enum qgl_method {
@@ -42,6 +43,10 @@ typedef struct qgl_gl_desc {
                                   that does not go through this layer (state changes, reads,
                                   swaps, another context made current): consecutive quad
                                   primitives are then gathered and drawn as one */
+    float split_error;         /* AUTO: a planar quad is also split where the split differs from
+                                  the smooth interpolation by less than the output shows: colours
+                                  (and fog) by half an 8-bit level, texture coordinates by 1/32
+                                  texel of level 0, times this scale. 0 = 1; negative = off */
 } qgl_gl_desc;
 
 /* Counters of what took which path; quads counts every quad seen, the others add up to it. */
@@ -63,6 +68,8 @@ QGL_API void qgl_gl_make_current(qgl_context *ctx); /* per thread */
 QGL_API qgl_context *qgl_gl_current(void);
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method);
 QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx);
+/* The scale of qgl_gl_desc.split_error, changed for later draws. */
+QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale);
 /* The shader path the context found: 0 none (CPU fallback only), 120 (GLSL 1.20 on GL 2.x or a
  * context capped by max_glsl: the cover computed on the CPU, corners sent per vertex), 150
  * (geometry shader, GL 3.2 compatibility). */

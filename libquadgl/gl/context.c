@@ -144,6 +144,11 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     ctx->method = d.method ? d.method : env_method();
     ctx->tolerance_px = d.tolerance_px > 0 ? d.tolerance_px : env_float("QUADGL_TOLERANCE", 0.5f);
     ctx->invisible_area_px = d.invisible_area_px > 0 ? d.invisible_area_px : 4.0f;
+    ctx->split_error = d.split_error;
+    const char *se = getenv("QUADGL_SPLIT_ERROR"); /* a scale; negative turns the rule off */
+    char *end;
+    if (!d.split_error && se && strtof(se, &end) != 0 && end != se)
+        ctx->split_error = strtof(se, NULL);
     ctx->exclusive = d.assume_exclusive != 0;
     int glsl120_ok = probe_driver(ctx, &d);
     if (ctx->has_vao)

@@ -5,10 +5,11 @@
  * Each quad is then planned:
  * polygon mode line/point and select/feedback render modes go to the driver as quads; in
  * AUTO a quad the diagonal split renders exactly (planar, attributes affine in object space)
- * or invisibly (bounding box under invisible_area_px) is split by the driver; the rest takes
- * the shader path when the state is modelled and the CPU subdivision otherwise. A short run of
- * such split quads next to shader-path quads joins their run (the same picture, one draw
- * fewer). Smooth
+ * or invisibly (bounding box under invisible_area_px, or a planar quad whose split differs from
+ * the mean value interpolation by less than the output can show: split_invisible below) is
+ * split by the driver; the rest takes the shader path when the state is modelled and the CPU
+ * subdivision otherwise. A short run of such split quads next to shader-path quads joins
+ * their run (the same picture, one draw fewer). Smooth
  * lighting is exact too where it reads no position (directional lights, infinite viewer) and
  * corners with equal attributes group along parallel edges (a cylinder's quads): the lit
  * colour is then affine over the quad. A retained batch (retain.c) brings these per-quad
@@ -126,7 +127,13 @@ static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_
 }
 
 /* Re-pack corner-major attributes (16 slots each) into the n-per-corner layout of the core. */
-static int split_is_exact(const qgl__state *st, const qgl__verts *v, const size_t idx[4], int *planar)
+static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                           const double *clip[4]);
+
+/* Whether the split draws the quad as the smooth path would: exactly, or (invisible set) by
+ * split_invisible's bound, which is tried first, being cheaper where it passes. */
+static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                          const double *clip[4], int invisible, int *planar)
 {
     double p[4][3], attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
     for (int c = 0; c < 4; c++) {
@@ -139,6 +146,8 @@ static int split_is_exact(const qgl__state *st, const qgl__verts *v, const size_
     *planar = qgl_is_planar(p, 1e-6);
     if (!*planar || st->nonaffine)
         return 0;
+    if (invisible && split_invisible(ctx, st, v, idx, clip))
+        return 1;
     int n = gather_attribs(st, v, idx, attr);
     for (int c = 0; c < 4; c++)
         for (int k = 0; k < n; k++)
@@ -271,19 +280,240 @@ static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
 
 /* Whether the split is exact, and whether the quad is planar: from the cached facts of a
  * retained batch, else tested now. */
-static int quad_exact(const qgl__state *st, const qgl__verts *v, const size_t idx[4], const qgl__facts *facts,
-                      size_t q, int *planar)
+static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                      const double *clip[4], int invisible, const qgl__facts *facts, size_t q, int *planar)
 {
     if (facts) {
         *planar = facts->quad[q] & QGL__F_PLANAR;
-        return exact_by_facts(st, needed_facts(st), facts->quad[q]);
+        return exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
+               (invisible && *planar && split_invisible(ctx, st, v, idx, clip));
     }
-    int exact = split_is_exact(st, v, idx, planar);
+    int exact = split_is_exact(ctx, st, v, idx, clip, invisible, planar);
     if (!exact && *planar && st->nonaffine && st->lit_by_inputs) {
         double p[4][3];
         exact = object_corners(v, idx, p) && quad_grouped(v, idx, p);
     }
     return exact;
+}
+
+/* ---- invisible splits: the split's error against the mean value interpolant ----------------
+ *
+ * Both interpolants are sums w_i(p) f_i of the corner values with weights summing to 1 (the
+ * split's perspective-correct barycentrics of the triangle holding p, the perspective mean
+ * value weights). On a planar quad both reproduce every attribute affine in object space, so
+ * their difference d(p) = w_split(p) - w_mvc(p) is orthogonal to those: d(p) = delta(p) n, n
+ * the affine dependency of the corners (sum n_i c_i = 0 in clip space, sum n_i = 0). The error
+ * of any attribute is then delta(p) (n . f): one geometric gain, max |delta|, times a residual
+ * per attribute component, whatever the state does to the attribute linearly (texture
+ * matrices). Both interpolants are linear on the edges (delta = 0 on the boundary), the split
+ * adds a crease on its diagonal, so |delta| peaks inside, along the diagonals; it is sampled
+ * at the diagonals' crossing, half-way from there to each corner, and at the centroids of the
+ * four triangles the diagonals cut, for both diagonals (drivers differ in which they use), and
+ * multiplied by SPLIT_SAFETY. Measured over 19 000 random planar convex quads in random
+ * perspective (corner angles jittered by +-36 degrees, radii 0.3 to 1.3, near-triangles
+ * included), a 121 x 121 grid's maximum was at most 1.65 times the sampled one, and d(p) was
+ * parallel to n everywhere on it. Sampling costs nine weight evaluations, so a bound that
+ * needs none comes first: on a convex quad both weight vectors lie in [0, 1], so
+ * |delta| <= 1 / max |n_i| (at most 2); quads within the budget by it (a smooth colour map on
+ * a fine mesh) are split at once, and quads more than 8 times over it (where the samples,
+ * which find about a quarter of it, could not pass) are not sampled. */
+
+/* The sampled maximum of |delta| times this bounds the true maximum (measured: see above). */
+#define SPLIT_SAFETY 2.0
+/* Colour budget: half an 8-bit level. Two values closer than that round to levels at most one
+ * apart, and mostly to the same level. */
+#define SPLIT_COLOUR (0.5 / 255)
+/* Texture coordinate budget in texels of level 0 (mipmap levels have larger texels). With
+ * linear filtering the sampled colour moves by at most the budget times the difference of
+ * neighbouring texels: under 1/255 where neighbours differ by 32 levels or less (images,
+ * gradients), up to 8 levels only at a hard black-to-white texel edge. With nearest filtering
+ * a texel changes only for samples within the budget of a texel boundary: at most 1/32 of the
+ * pixels per texel crossed, where the error peaks. */
+#define SPLIT_TEXEL (1.0 / 32)
+
+/* Perspective-correct barycentrics of (x, y) in the triangle tri of screen points v with clip
+ * w, as the rasterizer interpolates; 0 for the corner outside it. */
+static void triangle_weights(const double v[4][2], const double w[4], const int tri[3], double x, double y,
+                             double out[4])
+{
+    double b[3], sum = 0;
+    for (int k = 0; k < 3; k++) {
+        const double *p = v[tri[(k + 1) % 3]], *q = v[tri[(k + 2) % 3]];
+        b[k] = ((p[0] - x) * (q[1] - y) - (p[1] - y) * (q[0] - x)) / w[tri[k]];
+        sum += b[k];
+    }
+    out[0] = out[1] = out[2] = out[3] = 0;
+    for (int k = 0; k < 3; k++)
+        out[tri[k]] = b[k] / sum;
+}
+
+/* The split's weights at (x, y) for the diagonal from corner a to a + 2. */
+static void split_weights(const double v[4][2], const double w[4], int a, double x, double y, double out[4])
+{
+    int b = (a + 1) & 3, c = (a + 2) & 3, d = (a + 3) & 3;
+    double ex = v[c][0] - v[a][0], ey = v[c][1] - v[a][1];
+    double side_b = ex * (v[b][1] - v[a][1]) - ey * (v[b][0] - v[a][0]);
+    double side_p = ex * (y - v[a][1]) - ey * (x - v[a][0]);
+    const int tri_b[3] = {a, b, c}, tri_d[3] = {a, c, d};
+    triangle_weights(v, w, side_p * side_b >= 0 ? tri_b : tri_d, x, y, out);
+}
+
+static double det3(const double *a, const double *b, const double *c)
+{
+    return a[0] * (b[1] * c[3] - b[3] * c[1]) - a[1] * (b[0] * c[3] - b[3] * c[0]) + a[3] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+/* n, the null vector of the corners' clip (x, y, w) (cofactors), scaled to |n| = 1; 0 when the
+ * quad has no extent on screen. */
+static int dependency(const double *clip[4], double n[4])
+{
+    n[0] = det3(clip[1], clip[2], clip[3]), n[1] = -det3(clip[0], clip[2], clip[3]);
+    n[2] = det3(clip[0], clip[1], clip[3]), n[3] = -det3(clip[0], clip[1], clip[2]);
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + n[3] * n[3]);
+    if (!(len > 0 && len < INFINITY))
+        return 0;
+    for (int i = 0; i < 4; i++)
+        n[i] /= len;
+    return 1;
+}
+
+/* The sample points: the diagonals' crossing, half-way from it to each corner, the centroids
+ * of the triangles it forms with each edge; 0 unless the quad is strictly convex on screen. */
+static int gain_samples(const double v[4][2], double pts[9][2])
+{
+    double d1x = v[2][0] - v[0][0], d1y = v[2][1] - v[0][1], d2x = v[3][0] - v[1][0], d2y = v[3][1] - v[1][1];
+    double den = d1x * d2y - d1y * d2x, rx = v[1][0] - v[0][0], ry = v[1][1] - v[0][1];
+    double t = (rx * d2y - ry * d2x) / den, u = (rx * d1y - ry * d1x) / den;
+    if (!(t > 0.01 && t < 0.99 && u > 0.01 && u < 0.99))
+        return 0;
+    double cx = v[0][0] + t * d1x, cy = v[0][1] + t * d1y;
+    pts[0][0] = cx, pts[0][1] = cy;
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        pts[1 + i][0] = 0.5 * (cx + v[i][0]), pts[1 + i][1] = 0.5 * (cy + v[i][1]);
+        pts[5 + i][0] = (cx + v[i][0] + v[j][0]) / 3, pts[5 + i][1] = (cy + v[i][1] + v[j][1]) / 3;
+    }
+    return 1;
+}
+
+/* Whether the sampled gain max |delta| (n unit length) times SPLIT_SAFETY stays within limit.
+ * The crossing comes first: most quads that fail, fail there, after one weight evaluation. */
+static int gain_within(const double *clip[4], const GLint vp[4], const double n[4], double limit)
+{
+    double v[4][2], w[4], cl[4][4], pts[9][2];
+    for (int i = 0; i < 4; i++) { /* in pixels, as the shader path weighs (n is unchanged) */
+        memcpy(cl[i], clip[i], sizeof cl[i]);
+        cl[i][0] *= 0.5 * vp[2], cl[i][1] *= 0.5 * vp[3];
+        w[i] = cl[i][3];
+        v[i][0] = cl[i][0] / w[i], v[i][1] = cl[i][1] / w[i];
+    }
+    if (!gain_samples(v, pts))
+        return 0;
+    double nmax = 0;
+    for (int i = 0; i < 4; i++)
+        nmax = fabs(n[i]) > nmax ? fabs(n[i]) : nmax;
+    if (limit * nmax >= 1)
+        return 1;
+    if (limit * nmax < 0.125)
+        return 0;
+    limit /= SPLIT_SAFETY;
+    for (int k = 0; k < 9; k++) {
+        double mvc[4], sp[4];
+        if (qgl_weights(cl, pts[k][0], pts[k][1], mvc, NULL) != QGL_INSIDE)
+            return 0;
+        for (int a = 0; a < 2; a++) {
+            split_weights(v, w, a, pts[k][0], pts[k][1], sp);
+            double delta = 0;
+            for (int i = 0; i < 4; i++)
+                delta += (sp[i] - mvc[i]) * n[i];
+            if (!(fabs(delta) <= limit))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Largest |n . f| over the components of an attribute (size floats per vertex at a), values
+ * clamped to [0, 1] where the pipeline clamps them (colours). */
+static double residual(const double n[4], const float *a, int size, const size_t idx[4], int clamp)
+{
+    double worst = 0;
+    for (int k = 0; k < size; k++) {
+        double r = 0;
+        for (int c = 0; c < 4; c++) {
+            double f = a[(size_t)size * idx[c] + (size_t)k];
+            if (clamp)
+                f = f < 0 ? 0 : f > 1 ? 1 : f;
+            r += n[c] * f;
+        }
+        r = fabs(r);
+        worst = r > worst ? r : worst;
+    }
+    return worst;
+}
+
+/* Unit u's texel residual: its coordinates after the texture matrix, whose q must be one
+ * positive constant over the quad (s/q then errs by the residual of s over q), in texels of
+ * level 0; INFINITY for generated coordinates and cube maps (not judged). */
+static double texel_residual(const qgl__state *st, const qgl__verts *v, const size_t idx[4], const double n[4], int u)
+{
+    const qgl__unit_key *uk = &st->ffp.unit[u];
+    if (uk->target == QGL__T_CUBE || uk->gen[0] || uk->gen[1] || uk->gen[2] || uk->gen[3])
+        return INFINITY;
+    if (!(v->mask & (QGL__A_TEX0 << u)))
+        return 0; /* the current coordinates: constant */
+    double t[4][4], r[3] = {0, 0, 0};
+    for (int c = 0; c < 4; c++) {
+        transform(st->texmat[u], v->tex[u] + 4 * idx[c], t[c]);
+        if (!(t[c][3] > 0) || fabs(t[c][3] - t[0][3]) > 1e-6 * t[0][3])
+            return INFINITY;
+        for (int k = 0; k < 3; k++)
+            r[k] += n[c] * t[c][k];
+    }
+    int dims = uk->target == QGL__T_1D ? 1 : uk->target == QGL__T_3D ? 3 : 2;
+    double worst = 0;
+    for (int k = 0; k < dims; k++) {
+        double e = fabs(r[k]) / t[0][3] * st->texsize[u][k];
+        worst = e > worst ? e : worst;
+    }
+    return worst;
+}
+
+/* Whether the split of a planar quad (every w > 0) shows the same pixels as the mean value
+ * interpolation, within the budgets above scaled by the context's split_error: colours
+ * (primary, secondary under colour sum, and the fog factor from the fog coordinate, whose
+ * errors add in the output colour) and each unit's texture coordinates. The budgets over the
+ * residuals give the largest gain allowed, which the samples then check. Only for states
+ * whose per-vertex work is affine in the attributes and that the shader path models; COMBINE
+ * arithmetic (scales, dot products) may magnify a difference, so it is not judged. */
+static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                           const double *clip[4])
+{
+    double scale = ctx->split_error > 0 ? ctx->split_error : 1.0, n[4];
+    if (ctx->split_error < 0 || !st->modelled || st->nonaffine || st->pv_material || !dependency(clip, n))
+        return 0;
+    int smooth = st->shade_model != GL_FLAT;
+    double colour = 0;
+    if ((v->mask & QGL__A_COLOR) && smooth)
+        colour += residual(n, v->col, 4, idx, 1);
+    if ((v->mask & QGL__A_COLOR2) && smooth && (st->ffp.flags & QGL__KF_COLOR_SUM))
+        colour += residual(n, v->col2, 3, idx, 1);
+    if ((v->mask & QGL__A_FOG) && st->fog_slope > 0)
+        colour += residual(n, v->fog, 1, idx, 0) * st->fog_slope;
+    double limit = colour > 0 ? SPLIT_COLOUR * scale / colour : INFINITY;
+    for (int u = 0; u < st->ffp.nunits; u++) {
+        const qgl__unit_key *uk = &st->ffp.unit[u];
+        if (!uk->target)
+            continue;
+        if (uk->env == QGL__E_COMBINE)
+            return 0;
+        double texels = texel_residual(st, v, idx, n, u);
+        if (texels > 0) {
+            double l = SPLIT_TEXEL * scale / texels;
+            limit = l < limit ? l : limit;
+        }
+    }
+    return limit > 0 && gain_within(clip, st->viewport, n, limit);
 }
 
 static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
@@ -308,8 +538,9 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
         return QGL__P_SPLIT | QGL__P_EITHER;
     int planar = 0;
-    int exact = quad_exact(st, v, idx, facts, q, &planar);
-    if (ctx->method == QGL_METHOD_AUTO && exact)
+    int auto_ = ctx->method == QGL_METHOD_AUTO;
+    int exact = quad_exact(ctx, st, v, idx, clip, auto_ && !external, facts, q, &planar);
+    if (auto_ && exact)
         return QGL__P_SPLIT | QGL__P_EITHER;
     if (!st->modelled || (!planar && st->polygon_offset))
         return QGL__P_SUBDIV;
@@ -318,6 +549,12 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     if (external)
         return QGL__P_MVC | QGL__P_EXTERNAL;
     return QGL__P_MVC | (planar ? 0 : QGL__P_DEPTH);
+}
+
+QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale)
+{
+    if (ctx)
+        ctx->split_error = scale;
 }
 
 /* ---- drawing through the driver ---------------------------------------------------------------- */

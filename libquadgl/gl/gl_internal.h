@@ -265,6 +265,10 @@ typedef struct qgl__state {
                                  the eye position): where corners with equal attributes group
                                  affinely (QGL__F_GROUPED) its result is affine, split exactly */
     qgl__key ffp;             /* the fixed-function part of the program key */
+    float texsize[QGL_MAX_TEXUNITS][3]; /* level 0 width, height, depth of each enabled unit's
+                                 texture (1 for a rectangle texture: its coordinates are texels) */
+    double fog_slope;         /* bound on |d fog factor / d fog coordinate| (fog from the
+                                 coordinate; 0 otherwise) */
 } qgl__state;
 
 /* ---- programs ------------------------------------------------------------------------------ */
@@ -289,6 +293,8 @@ struct qgl_context {
     struct qgl__gl gl;
     qgl_method method;
     float tolerance_px, invisible_area_px;
+    float split_error;        /* desc.split_error: scale of the invisible-split budgets, 0 = 1,
+                                 negative = only exact splits (and the area rule) */
     int version;              /* GL version * 10 (e.g. 45) */
     int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c) */
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */

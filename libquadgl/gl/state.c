@@ -14,6 +14,7 @@
  * Parameters (light colours, planes, fog distances...) are not read: the programs take them
  * from the built-in uniforms, which the driver keeps current. Queries never raise a GL error
  * (only enums of the context's version are asked) and the active texture unit is put back. */
+#include <math.h>
 #include <string.h>
 
 #include "gl_internal.h"
@@ -162,6 +163,20 @@ static int query_texgen(qgl_context *ctx, qgl__unit_key *uk)
     return 1;
 }
 
+/* Level 0's size in texels per coordinate (what a coordinate error of 1 is in texels); a
+ * rectangle texture's coordinates are texels already. */
+static void texture_size(qgl_context *ctx, GLenum target, float size[3])
+{
+    static const GLenum dims[3] = {GL_TEXTURE_WIDTH, GL_TEXTURE_HEIGHT, GL_TEXTURE_DEPTH};
+    GLenum level_target = target == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X : target;
+    for (int d = 0; d < 3; d++) {
+        GLint n = 1;
+        if (target != GL_TEXTURE_RECTANGLE && (d < 2 || target == GL_TEXTURE_3D))
+            ctx->gl.GetTexLevelParameteriv(level_target, 0, dims[d], &n);
+        size[d] = n > 1 ? (float)n : 1.0f;
+    }
+}
+
 /* The active unit u (target already known): env, format, texgen, matrix. */
 static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qgl__unit_key *uk)
 {
@@ -181,6 +196,7 @@ static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qg
         return 0;
     }
     gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
+    texture_size(ctx, target, st->texsize[u]);
     return query_texgen(ctx, uk);
 }
 
@@ -269,6 +285,21 @@ static void query_fog(qgl_context *ctx, qgl__key *k)
         k->flags |= QGL__KF_FOG_DEPTH;
 }
 
+/* Steepest slope of the fog factor in the fog coordinate c (c >= 0): linear
+ * (end - c) / (end - start) has 1 / |end - start|; exp(-d c) at most d; exp(-(d c)^2) at most
+ * d sqrt(2 / e) (its inflection point). The factor's change bounds the colour's. */
+static double fog_slope(qgl_context *ctx, const qgl__key *k)
+{
+    float start = 0, end = 1, density = 1;
+    if (k->fog == QGL__FOG_LINEAR) {
+        ctx->gl.GetFloatv(GL_FOG_START, &start);
+        ctx->gl.GetFloatv(GL_FOG_END, &end);
+        return end != start ? 1.0 / fabs((double)end - start) : INFINITY;
+    }
+    ctx->gl.GetFloatv(GL_FOG_DENSITY, &density);
+    return fabs((double)density) * (k->fog == QGL__FOG_EXP2 ? 0.8578 : 1.0);
+}
+
 /* Some unit generates coordinates from the normal (sphere, reflection or normal map): not
  * affine in the position, and a reader of the normal. */
 static int normal_texgen(const qgl__key *k)
@@ -334,8 +365,11 @@ static int query_ffp(qgl_context *ctx, qgl__state *st)
         else if (ctx->version >= 12 && gl->IsEnabled(GL_RESCALE_NORMAL))
             k->flags |= QGL__KF_RESCALE;
     }
-    if (gl->IsEnabled(GL_FOG))
+    if (gl->IsEnabled(GL_FOG)) {
         query_fog(ctx, k);
+        if (!(k->flags & QGL__KF_FOG_DEPTH))
+            st->fog_slope = fog_slope(ctx, k);
+    }
     for (GLint i = 0; i < ctx->max_clip_planes; i++)
         if (gl->IsEnabled(GL_CLIP_PLANE0 + (GLenum)i)) {
             if (i >= 8)

@@ -1,0 +1,218 @@
+/* test_split_error: AUTO splits a planar quad whose split differs invisibly from MVC.
+ *
+ * A 16 x 16 grid of square quads on a plane seen in perspective carries attributes with a
+ * small bilinear term (not affine, so the split is not exact). Where the planner's bound
+ * says the split differs from the mean value interpolation by under half an 8-bit level
+ * (colours) or 1/32 texel (texture coordinates), AUTO must split most quads (the counters)
+ * and still draw the picture of the forced shader path: within 1/255 for colours, within
+ * 2/255 for a LINEAR texture with 64-level steps between neighbouring texels (1/32 texel of
+ * error moves such a sample by 2 levels), except at most 0.2 % of the pixels. Where the
+ * difference is visible (vertex colours in a checker; texture coordinates with a bilinear
+ * term 20 times larger) every quad must take the shader path; so must Bailey's large R-B-G-R
+ * quad; and split_error < 0 turns the rule off.
+ * The retained path (cached facts) plans the same. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+
+enum { W = 256, H = 256, N = 16, NV = 4 * N * N };
+
+static float pos[NV][3], col[NV][4], tex[NV][2];
+
+/* Corner attributes at (x, y) of the plane z = 0, [-1, 1]^2; k scales the bilinear term (of
+ * blue: 0.5 + k x y); k_col < 0 makes blue a checker of the vertices instead (0 or 1). */
+static void grid(double k_col, double k_tex)
+{
+    int i = 0;
+    for (int gy = 0; gy < N; gy++)
+        for (int gx = 0; gx < N; gx++)
+            for (int c = 0; c < 4; c++, i++) {
+                static const int cx[4] = {0, 1, 1, 0}, cy[4] = {0, 0, 1, 1};
+                float x = -1 + 2.0f * (gx + cx[c]) / N, y = -1 + 2.0f * (gy + cy[c]) / N;
+                pos[i][0] = x, pos[i][1] = y, pos[i][2] = 0;
+                col[i][0] = (x + 1) / 2, col[i][1] = (y + 1) / 2;
+                col[i][2] = (float)(0.5 + k_col * x * y), col[i][3] = 1;
+                if (k_col < 0)
+                    col[i][2] = (float)((gx + cx[c] + gy + cy[c]) & 1);
+                tex[i][0] = (float)((x + 1) / 2 + k_tex * x * y), tex[i][1] = (y + 1) / 2;
+            }
+}
+
+static qgl_quad_batch batch(int textured)
+{
+    qgl_quad_batch b = {.topology = QGL_QUADS, .count = NV};
+    b.position = (qgl_attrib){pos, 3, 0, 0};
+    b.color = (qgl_attrib){col, 4, 0, 0};
+    if (textured)
+        b.texcoord[0] = (qgl_attrib){tex, 2, 0, 0};
+    return b;
+}
+
+static void view(void)
+{
+    glViewport(0, 0, W, H);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.6, 0.6, -0.6, 0.6, 1, 10);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    glTranslatef(0, 0, -2.6f);
+    glRotatef(-55, 1, 0, 0);
+}
+
+/* 64 x 64, LINEAR: an 8-texel checker of 64 levels over gentle gradients. */
+static void texture(void)
+{
+    static unsigned char t[64][64][4];
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 64; x++) {
+            int on = ((x / 8) ^ (y / 8)) & 1;
+            t[y][x][0] = (unsigned char)(96 + 64 * on);
+            t[y][x][1] = (unsigned char)(60 + 2 * x);
+            t[y][x][2] = (unsigned char)(200 - 2 * y);
+            t[y][x][3] = 255;
+        }
+    GLuint id;
+    glGenTextures(1, &id);
+    glBindTexture(GL_TEXTURE_2D, id);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, t);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+}
+
+/* Draw b (or r when given) with method m; returns the picture, stats in st. */
+static unsigned char *draw(th_ctx *t, qgl_method m, const qgl_quad_batch *b, const qgl_retained *r,
+                           qgl_gl_stats_t *st)
+{
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    qgl_gl_set_method(t->qgl, m);
+    qgl_gl_reset_stats(t->qgl);
+    int n = r ? qgl_gl_draw_retained(t->qgl, r) : qgl_draw_quads(t->qgl, b);
+    th_check(n == N * N, "drew %d quads", n);
+    glFinish();
+    qgl_gl_stats(t->qgl, st);
+    return th_snapshot(t);
+}
+
+/* Pixels whose channels differ by more than tol; the largest difference in *worst. */
+static int count_diff(const unsigned char *a, const unsigned char *b, int tol, int *worst)
+{
+    int bad = 0;
+    *worst = 0;
+    for (int i = 0; i < W * H; i++) {
+        int over = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs(a[4 * i + c] - b[4 * i + c]);
+            *worst = d > *worst ? d : *worst;
+            over |= d > tol;
+        }
+        bad += over;
+    }
+    return bad;
+}
+
+/* AUTO against MVC on the grid: returns the quads AUTO split, checks the pixels. */
+static int compare(th_ctx *t, const char *name, int textured, int tol, int allowed_bad, int retained)
+{
+    qgl_quad_batch b = batch(textured);
+    qgl_retained *r = retained ? qgl_gl_retain(&b, NULL) : NULL;
+    qgl_gl_stats_t sa, sm;
+    unsigned char *a = draw(t, QGL_METHOD_AUTO, &b, r, &sa);
+    unsigned char *m = draw(t, QGL_METHOD_MVC, &b, r, &sm);
+    int worst, bad = count_diff(a, m, tol, &worst);
+    printf("%-28s auto split %3llu mvc %3llu | pixels over %d/255: %d (allowed %d), largest %d/255\n", name,
+           (unsigned long long)sa.split, (unsigned long long)sa.mvc, tol, bad, allowed_bad, worst);
+    th_check(sm.mvc == N * N, "%s: MVC forced must take the shader path for every quad", name);
+    th_check(bad <= allowed_bad, "%s: %d pixels differ from MVC by more than %d/255", name, bad, tol);
+    if (bad > allowed_bad) {
+        th_write(t, a, "split_error_auto");
+        th_write(t, m, "split_error_mvc");
+    }
+    qgl_gl_release(r);
+    free(a);
+    free(m);
+    return (int)sa.split;
+}
+
+/* The comparison can fail: with the budget 1000 times larger the checker grid splits and its
+ * picture differs from MVC's by many levels. */
+static void teeth(th_ctx *t)
+{
+    qgl_quad_batch b = batch(0);
+    qgl_gl_stats_t sa, sm;
+    qgl_gl_set_split_error(t->qgl, 1000);
+    unsigned char *a = draw(t, QGL_METHOD_AUTO, &b, NULL, &sa);
+    unsigned char *m = draw(t, QGL_METHOD_MVC, &b, NULL, &sm);
+    int worst, bad = count_diff(a, m, 1, &worst);
+    th_check(sa.split == N * N && bad > W * H / 20 && worst > 16,
+             "budget x1000: split %llu, %d pixels over 1/255, largest %d: the comparison has no teeth",
+             (unsigned long long)sa.split, bad, worst);
+    qgl_gl_set_split_error(t->qgl, 0);
+    free(a);
+    free(m);
+}
+
+/* Bailey's quad: red, blue, green, red corners over most of the screen. */
+static void bailey(th_ctx *t)
+{
+    static const float p[4][3] = {{-0.9f, -0.9f, 0}, {0.9f, -0.9f, 0}, {0.9f, 0.9f, 0}, {-0.9f, 0.9f, 0}};
+    static const float c[4][4] = {{1, 0, 0, 1}, {0, 0, 1, 1}, {0, 1, 0, 1}, {1, 0, 0, 1}};
+    qgl_quad_batch b = {.topology = QGL_QUADS, .count = 4};
+    b.position = (qgl_attrib){p, 3, 0, 0};
+    b.color = (qgl_attrib){c, 4, 0, 0};
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    qgl_gl_set_method(t->qgl, QGL_METHOD_AUTO);
+    qgl_gl_reset_stats(t->qgl);
+    qgl_draw_quads(t->qgl, &b);
+    qgl_gl_stats_t st;
+    qgl_gl_stats(t->qgl, &st);
+    th_check(st.mvc == 1 && st.split == 0, "Bailey's quad: mvc %llu split %llu, expected the shader path",
+             (unsigned long long)st.mvc, (unsigned long long)st.split);
+}
+
+int main(void)
+{
+    th_ctx t;
+    int rc = th_init(&t, W, H, NULL);
+    if (rc)
+        return rc;
+    if (qgl_gl_shader_level(t.qgl) == 0) {
+        th_free(&t);
+        return 77;
+    }
+    view();
+    glEnable(GL_DEPTH_TEST);
+    grid(0.15, 0);
+    int split = compare(&t, "colour, invisible", 0, 1, 0, 0);
+    th_check(split >= N * N * 3 / 4, "colour: only %d of %d quads split", split, N * N);
+    split = compare(&t, "colour, invisible, retained", 0, 1, 0, 1);
+    th_check(split >= N * N * 3 / 4, "colour, retained: only %d of %d quads split", split, N * N);
+    qgl_gl_set_split_error(t.qgl, -1);
+    split = compare(&t, "colour, rule off", 0, 1, 0, 0);
+    th_check(split == 0, "split_error < 0: %d quads split", split);
+    qgl_gl_set_split_error(t.qgl, 0);
+    grid(-1, 0);
+    split = compare(&t, "colour, visible", 0, 255, 0, 0);
+    th_check(split == 0, "colour checker: %d quads split", split);
+    teeth(&t);
+
+    texture();
+    glEnable(GL_TEXTURE_2D);
+    grid(0, 0.04);
+    split = compare(&t, "texture, invisible", 1, 2, W * H / 500, 0);
+    th_check(split >= N * N * 3 / 4, "texture: only %d of %d quads split", split, N * N);
+    grid(0, 0.8);
+    split = compare(&t, "texture, visible", 1, 255, 0, 0);
+    th_check(split == 0, "texture with a visible bilinear term: %d quads split", split);
+    glDisable(GL_TEXTURE_2D);
+
+    bailey(&t);
+    th_free(&t);
+    return th_failures ? 1 : 0;
+}
