@@ -3,8 +3,10 @@
  * Three targets of issue 4, each timed as the median of several frames (draw + glFinish; native
  * and qgl frames alternate) in one run, wall clock and process CPU time: a full-screen
  * non-affine quad at 1024^2 on the shader path; AUTO on a textured latitude/longitude sphere
- * and a jittered colour mesh; and many tiny quads in immediate mode (1M vertices per frame). Native frames call the driver's glBegin/glVertex directly;
- * ours call the qgl* twins. Usage: quadgl-glbench [frames [name]] (default 9 frames; name runs
+ * and a height field with random corner colours (the worst case: every quad visibly non-affine)
+ * and, for contrast, a flat slice with a smooth colour map (the split invisible); and many tiny
+ * quads in immediate mode (1M vertices per frame). Native frames call the driver's
+ * glBegin/glVertex directly; ours call the qgl* twins. Usage: quadgl-glbench [frames [name]] (default 9 frames; name runs
  * only the cases whose title contains it, e.g. "mesh", for profiling). */
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
