@@ -521,12 +521,14 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
 {
     size_t idx[4];
     const double *clip[4];
-    int external = 0, behind = 0;
+    int external = 0, behind = 0, outside = 0;
     for (int c = 0; c < 4; c++) {
         idx[c] = qgl__corner(topo, q, c);
         clip[c] = ctx->clip + 4 * idx[c];
-        external |= !(clip[c][3] > 0);
-        behind += !(clip[c][3] > 0);
+        const double *x = clip[c];
+        external |= !(x[3] > 0);
+        behind += !(x[3] > 0);
+        outside |= !(fabs(x[0]) <= x[3] && fabs(x[1]) <= x[3] && fabs(x[2]) <= x[3]);
     }
     if (behind == 4)
         return QGL__P_SPLIT; /* entirely behind the eye: the clipper removes it */
@@ -547,8 +549,9 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     /* With a corner behind the eye the cover is the clipped split; its rasterized depth is the
      * one consistent with that clipping, so eq. 4 depth is used for visible quads only. */
     if (external)
-        return QGL__P_MVC | QGL__P_EXTERNAL;
-    return QGL__P_MVC | (planar ? 0 : QGL__P_DEPTH);
+        return QGL__P_MVC | QGL__P_EXTERNAL | QGL__P_CLIPPED;
+    /* the driver clips quads reaching out of the view volume: see shader.c's persp() */
+    return QGL__P_MVC | (planar ? 0 : QGL__P_DEPTH) | (outside ? QGL__P_CLIPPED : 0);
 }
 
 QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale)
@@ -765,6 +768,8 @@ static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, u
         k->flags |= QGL__KF_DEPTH;
     if (path & QGL__P_EXTERNAL)
         k->flags |= QGL__KF_DISCARD;
+    if (path & QGL__P_CLIPPED)
+        k->flags |= QGL__KF_CLIPPED;
 }
 
 static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,

@@ -228,7 +228,8 @@ enum {
     QGL__KF_RESCALE = 1 << 8,
     QGL__KF_COLOR_SUM = 1 << 9,    /* unlit: add the secondary colour */
     QGL__KF_FOG_DEPTH = 1 << 10,   /* fog source is the fragment depth (else the fog coordinate) */
-    QGL__KF_MATERIAL = 1 << 11     /* materials given per vertex (generic attributes) */
+    QGL__KF_MATERIAL = 1 << 11,    /* materials given per vertex (generic attributes) */
+    QGL__KF_CLIPPED = 1 << 12      /* the driver may clip: g perspective-interpolated */
 };
 
 typedef struct qgl__key {
@@ -339,7 +340,7 @@ struct qgl_context {
 /* Paths a quad can take. */
 enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3 };
 /* Bits on top of QGL__P_MVC in the per-quad path byte. */
-enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5 };
+enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5, QGL__P_CLIPPED = 1 << 7 };
 /* While planning: a split quad that the shader path would draw the same (AUTO: exact, or too
  * small to differ), free to join a neighbouring shader-path run. */
 enum { QGL__P_EITHER = 1 << 6 };

@@ -107,7 +107,7 @@ static const char fs_src[] =
     "varying vec4 v_w, v_z;\n"
     "#endif\n"
     "vec4 weights() {\n"
-    "    return quad_weights(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
+    "    return quad_weights_any(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
     "}\n"
     "void main() {\n"
     "    vec4 lam = weights();\n"

@@ -15,10 +15,14 @@
  * reflex corner; bow-tie: the two lobes meeting at the crossing point, each keeping its own
  * winding, so facing is per lobe; a corner at or behind the eye: the clipped split, with the
  * fragment shader killing what lies outside the quad). It passes the corners' per-vertex
- * results flat (one mat4 per vec4 result: column i is corner i), and g_i = x_i W - X w_i
- * (clip corner i against the emitted vertex X), linear in clip space: perspective
- * interpolation makes them W_f * s~_i(p), a positive multiple of the core's homogeneous s~_i,
- * which leaves the weights unchanged. x and y are scaled by the viewport's half size (u_px), so
+ * results flat (one mat4 per vec4 result: column i is corner i), and g_i = x_i - w_i X/W
+ * (clip corner i against the emitted vertex X), affine in the window: interpolated without
+ * perspective they are s~_i(p), the core's homogeneous s~_i, times one scale per quad that
+ * keeps them near 1 and leaves the weights unchanged (no per-fragment normalisation). Where
+ * the driver clips (a corner outside the view volume or behind the eye, clip planes) g_i =
+ * x_i W - X w_i instead, linear in clip space, perspective-interpolated (W_f * s~_i) and
+ * normalised per fragment.
+ * x and y are scaled by the viewport's half size (u_px), so
  * the weights are those of the quad as it appears in pixels, whatever the viewport's aspect
  * (in NDC a wide window would squeeze the quad). Clip distances come from the corners' eye positions
  * (exact for planar quads, as the driver's own clipping); a non-planar quad is clipped per
@@ -319,11 +323,23 @@ static const char *flat_type(const qgl__key *k, const flat_var *v)
     return v->scalar ? "vec4" : "mat4";
 }
 
+/* g_i / W is affine in the window: interpolated without perspective and scaled per quad (see
+ * the geometry shader) it reaches the weights as it is. Where the driver clips (a corner
+ * outside the view volume, clip planes), g_i stays linear in clip space, perspective-
+ * interpolated and normalised per fragment: clippers compute perspective attributes of new
+ * vertices in clip space, exactly, but noperspective ones from a screen-space parameter that
+ * Mesa takes along x even when the edge is nearly vertical on screen (measured: colours off
+ * by up to 115 levels on a floor reaching past the window). */
+static int persp(const qgl__key *k)
+{
+    return (k->flags & QGL__KF_CLIPPED) || k->clip;
+}
+
 static void varyings(sb *b, const qgl__key *k, const char *dir)
 {
     flat_var v[16];
     int n = flat_vars(k, v);
-    put(b, "%s vec4 gA, gB;\n", dir);
+    put(b, "%s%s vec4 gA, gB;\n", persp(k) ? "" : "noperspective ", dir);
     for (int i = 0; i < n; i++)
         put(b, "flat %s %s f_%s;\n", dir, flat_type(k, &v[i]), v[i].name);
     if (k->flags & QGL__KF_DEPTH)
@@ -362,6 +378,19 @@ static const char gs_cover[] =
     "    }\n"
     "    vec2 v[4];\n"
     "    for (int i = 0; i < 4; i++) v[i] = C[i].xy / C[i].w;\n"
+    /* A fragment p lies in the quad's bounding box and in the viewport, so |g_i| = w_i |v_i -
+     * p| px is at most w_i times v_i's L1 distance (in pixels) to the farthest point of that
+     * box. Dividing by the largest such bound keeps every g_i <= 1 and, the bound being
+     * nearly reached, the weights' products (degree 11) in float range; a per-fragment
+     * normalisation did that before. Taking w_i and the distance per corner matters for a
+     * floor to the horizon: far corners have large w but lie close, near ones the reverse. */
+    "#if !PERSP\n"
+    "    vec2 lo = max(min(min(v[0], v[1]), min(v[2], v[3])), vec2(-1.0));\n"
+    "    vec2 hi = min(max(max(v[0], v[1]), max(v[2], v[3])), vec2(1.0));\n"
+    "    float bound = 0.0;\n"
+    "    for (int i = 0; i < 4; i++) bound = max(bound, w[i] * dot(max(v[i] - lo, hi - v[i]), u_px));\n"
+    "    g_scale = u_px.xyxy / max(bound, 1e-30);\n"
+    "#endif\n"
     "    int npos = 0, nneg = 0, ipos = 0, ineg = 0;\n"
     "    for (int i = 0; i < 4; i++) {\n"
     "        float k = cross2(v[i] - v[(i + 3) & 3], v[(i + 1) & 3] - v[i]);\n"
@@ -395,14 +424,14 @@ static void gs_source(sb *b, const qgl__key *k)
     flat_var v[16];
     int n = flat_vars(k, v);
     int hw_clip = k->clip && !frag_clip(k);
-    put(b, "#version 150 compatibility\n#define CLIP %d\n", k->clip ? 1 : 0);
+    put(b, "#version 150 compatibility\n#define CLIP %d\n#define PERSP %d\n", k->clip ? 1 : 0, persp(k));
     put(b, "layout(lines_adjacency) in;\nlayout(triangle_strip, max_vertices = 6) out;\n");
     for (int i = 0; i < n; i++)
         put(b, "in %s q_%s[];\n", v[i].scalar ? "float" : "vec4", v[i].name);
     if (k->clip && !frag_clip(k))
         put(b, "in vec4 q_eye[];\n");
     varyings(b, k, "out");
-    put(b, "uniform vec2 u_px;\nvec4 C[5];\n");
+    put(b, "uniform vec2 u_px;\nvec4 C[5];\nvec4 g_scale;\n");
     if (k->clip)
         put(b, "vec4 E[5];\n");
     /* the flat values are the same for every emitted vertex: gathered once */
@@ -426,8 +455,14 @@ static void gs_source(sb *b, const qgl__key *k)
                "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n");
     put(b, "}\n");
     put(b, "void emit(int k) {\n    vec4 X = C[k];\n    gl_Position = X;\n");
-    put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w) * u_px.xyxy;\n");
-    put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w) * u_px.xyxy;\n");
+    if (persp(k)) {
+        put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w) * u_px.xyxy;\n");
+        put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w) * u_px.xyxy;\n");
+    } else {
+        put(b, "    vec2 n = X.xy / X.w;\n");
+        put(b, "    gA = vec4(C[0].xy - n * C[0].w, C[1].xy - n * C[1].w) * g_scale;\n");
+        put(b, "    gB = vec4(C[2].xy - n * C[2].w, C[3].xy - n * C[3].w) * g_scale;\n");
+    }
     for (int p = 0; p < 8; p++)
         if ((k->clip >> p) & 1)
             {
@@ -454,8 +489,9 @@ static void gs_source(sb *b, const qgl__key *k)
  * leaves only products. On an edge segment (den_i = 0) this gives the edge's linear
  * interpolation as the limit, with no test. On a corner (r_i = 0) every product holds r_i or
  * a den that vanishes with it, so all nu are 0 and adding 1 to nu_i gives the corner's own
- * value; a branch would cost as much, since SIMD rasterizers run both sides. s is first
- * scaled to a sum of 1 so that the eight-fold products stay in range. */
+ * value; a branch would cost as much, since SIMD rasterizers run both sides. The products
+ * (degree 11 in g) stay in float range for |g_i| up to about 1 and not far below: the
+ * geometry shader scales g per quad so; quad_weights_any scales them per fragment. */
 const char qgl__glsl_weights[] =
     "#if __VERSION__ >= 130\n"
     "#define QGL_SELECT(a, b, c) mix(a, b, c)\n"
@@ -463,9 +499,6 @@ const char qgl__glsl_weights[] =
     "#define QGL_SELECT(a, b, c) mix(a, b, vec4(c))\n"
     "#endif\n"
     "vec4 quad_weights(vec4 sx, vec4 sy) {\n"
-    "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
-    "    sx *= k;\n"
-    "    sy *= k;\n"
     "    vec4 sxn = sx.yzwx, syn = sy.yzwx;\n"
     "    vec4 rho = sqrt(sx * sx + sy * sy);\n"
     "    vec4 A = sx * syn - sy * sxn;\n"
@@ -476,11 +509,16 @@ const char qgl__glsl_weights[] =
     "    vec4 nu = (num.wxyz * den + num * den.wxyz) * (den.yzwx * den.zwxy) * (P.yzwx * rho.wxyz);\n"
     "    nu += vec4(equal(rho, vec4(0.0)));\n"
     "    return nu * (1.0 / dot(nu, vec4(1.0)));\n"
+    "}\n"
+    /* g of any size: scaled to a sum of 1 first */
+    "vec4 quad_weights_any(vec4 sx, vec4 sy) {\n"
+    "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
+    "    return quad_weights(sx * k, sy * k);\n"
     "}\n";
 
 static const char fs_weights[] =
     "vec4 weights() {\n"
-    "    return quad_weights(vec4(gA.x, gA.z, gB.x, gB.z), vec4(gA.y, gA.w, gB.y, gB.w));\n"
+    "    return QGL_WEIGHTS(vec4(gA.x, gA.z, gB.x, gB.z), vec4(gA.y, gA.w, gB.y, gB.w));\n"
     "}\n";
 
 static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "sampler2DRect"};
@@ -638,6 +676,7 @@ static void fs_source(sb *b, const qgl__key *k)
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
             put(b, "uniform %s u_tex%d;\n", sampler_type[k->unit[u].target], u);
+    put(b, "#define QGL_WEIGHTS %s\n", persp(k) ? "quad_weights_any" : "quad_weights");
     put(b, "%s%s", qgl__glsl_weights, fs_weights);
     put(b, "void main() {\n    vec4 lam = weights();\n");
     if (k->flags & QGL__KF_DISCARD)

@@ -1,6 +1,6 @@
 /* test_reference: quads of every shape drawn by the shader path against the core's double
  * weights per pixel (convex, concave, bow-tie, corners on pixel centres, a wide viewport,
- * perspective, non-planar with depth).
+ * perspective, a floor to the horizon, non-planar with depth, a corner behind the eye).
  *
  * Pixels whose centre and 8 neighbours are inside the quad must match the reference colour
  * within 2/255 (float weights against double); drawn pixels must lie inside or on the
@@ -153,6 +153,25 @@ int main(void)
     th_write(&t, NULL, "ref_saddle");
     compare(&t, saddle, "ref_saddle", 1);
 
+    /* floors to the horizon, corners from w = 1.2 to w = 900: inside the window (the range
+     * the per-quad scale of g must hold in float), and reaching 50 windows out to the sides
+     * and below (the driver clips: g must not be interpolated without perspective there) */
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.5, 0.5, -0.5, 0.5, 1, 1000);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    static const float floor_in[4][3] = {{-0.55f, -0.55f, -1.2f}, {0.6f, -0.55f, -1.3f}, {400, -0.55f, -900}, {-350, -0.55f, -800}};
+    run_flat(&t, floor_in, "ref_floor");
+    static const float floor_out[4][3] = {{-30, -1, -1.2f}, {40, -1, -1.3f}, {300, -1, -900}, {-250, -1, -800}};
+    run_flat(&t, floor_out, "ref_floor_clipped");
+    static const float floor_near[4][3] = {{-3, -1, -1.2f}, {4, -1, -1.3f}, {30, -1, -9}, {-25, -1, -8}};
+    run_flat(&t, floor_near, "ref_floor_clipped2");
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.5, 0.5, -0.5, 0.5, 1, 20);
+    glMatrixMode(GL_MODELVIEW);
+
     /* a corner behind the eye: the external quad (H&T 3.2), clipped at the near plane */
     glLoadIdentity();
     /* planar (z = -2 - 1.5 y), so eq. 4 depth and the clipped cover agree */
@@ -164,7 +183,7 @@ int main(void)
 
     qgl_gl_stats_t st;
     qgl_gl_stats(t.qgl, &st);
-    th_check(st.mvc == 9 && st.quads == 9, "stats: %llu quads, %llu by mvc", (unsigned long long)st.quads,
+    th_check(st.mvc == 12 && st.quads == 12, "stats: %llu quads, %llu by mvc", (unsigned long long)st.quads,
              (unsigned long long)st.mvc);
     th_free(&t);
     return th_failures ? 1 : 0;
