@@ -33,7 +33,7 @@ QGL_API qgl_context *qgl_gl_current(void)
 
 static qgl_method env_method(void)
 {
-    const char *s = getenv("QUADGL_METHOD");
+    const char *s = secure_getenv("QUADGL_METHOD");
     if (!s)
         return QGL_METHOD_AUTO;
     if (!strcmp(s, "mvc"))
@@ -47,7 +47,7 @@ static qgl_method env_method(void)
 
 static float env_float(const char *name, float def)
 {
-    const char *s = getenv(name);
+    const char *s = secure_getenv(name);
     char *end;
     float v = s ? strtof(s, &end) : 0;
     return s && end != s && v > 0 ? v : def;
@@ -145,7 +145,7 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     ctx->tolerance_px = d.tolerance_px > 0 ? d.tolerance_px : env_float("QUADGL_TOLERANCE", 0.5f);
     ctx->invisible_area_px = d.invisible_area_px > 0 ? d.invisible_area_px : 4.0f;
     ctx->split_error = d.split_error;
-    const char *se = getenv("QUADGL_SPLIT_ERROR"); /* a scale; negative turns the rule off */
+    const char *se = secure_getenv("QUADGL_SPLIT_ERROR"); /* a scale; negative turns the rule off */
     char *end;
     if (!d.split_error && se && strtof(se, &end) != 0 && end != se)
         ctx->split_error = strtof(se, NULL);
