@@ -348,6 +348,8 @@ static void varyings(sb *b, const qgl__key *k, const char *dir)
 
 static const char gs_cover[] =
     "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
+    /* triangles (a, a+1, a+2) and (a, a+2, a+3) as one strip: four vertices, not six */
+    "void quad(int a) { emit((a + 1) & 3); emit((a + 2) & 3); emit(a); emit((a + 3) & 3); EndPrimitive(); }\n"
     "float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }\n"
     /* C[4] (and its eye position) := the clip point on edge a->b at screen parameter t */
     "void set_cross(int a, int b, float t) {\n"
@@ -373,7 +375,7 @@ static const char gs_cover[] =
     "    vec4 w = vec4(C[0].w, C[1].w, C[2].w, C[3].w);\n"
     "    if (any(lessThanEqual(w, vec4(0.0)))) {\n"
     "        if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
-    "        tri(0, 1, 2); tri(0, 2, 3);\n"
+    "        quad(0);\n"
     "        return;\n"
     "    }\n"
     "    vec2 v[4];\n"
@@ -398,10 +400,9 @@ static const char gs_cover[] =
     "        if (k < 0.0) { nneg++; ineg = i; }\n"
     "    }\n"
     "    if (npos + nneg == 0) return;\n"
-    "    if (npos == 0 || nneg == 0) { tri(0, 1, 2); tri(0, 2, 3); return; }\n"
+    "    if (npos == 0 || nneg == 0) { quad(0); return; }\n"
     "    if (npos != nneg) {\n"
-    "        int r = npos < nneg ? ipos : ineg;\n"
-    "        tri(r, (r + 1) & 3, (r + 2) & 3); tri(r, (r + 2) & 3, (r + 3) & 3);\n"
+    "        quad(npos < nneg ? ipos : ineg);\n"
     "        return;\n"
     "    }\n"
     "    vec2 tu = crossing(v[0], v[1], v[2], v[3]);\n"
@@ -416,7 +417,7 @@ static const char gs_cover[] =
     "        tri(4, 2, 3); tri(4, 0, 1);\n"
     "        return;\n"
     "    }\n"
-    "    tri(0, 1, 2); tri(0, 2, 3);\n"
+    "    quad(0);\n"
     "}\n";
 
 static void gs_source(sb *b, const qgl__key *k)
