@@ -516,6 +516,15 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
     return limit > 0 && gain_within(clip, st->viewport, n, limit);
 }
 
+/* Whether the driver may clip at this clip coordinate: outside, or so close inside that the
+ * GPU's float transform may land outside (exactly on the plane, as a window-filling quad's
+ * corners are, is inside on both). */
+static int near_or_out(double c, double w)
+{
+    double a = fabs(c);
+    return !(a <= w) || (a != w && a > w * (1 - 1e-6));
+}
+
 static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
                                qgl_topology topo, size_t q, const qgl__facts *facts)
 {
@@ -528,7 +537,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         const double *x = clip[c];
         external |= !(x[3] > 0);
         behind += !(x[3] > 0);
-        outside |= !(fabs(x[0]) <= x[3] && fabs(x[1]) <= x[3] && fabs(x[2]) <= x[3]);
+        outside |= near_or_out(x[0], x[3]) || near_or_out(x[1], x[3]) || near_or_out(x[2], x[3]);
     }
     if (behind == 4)
         return QGL__P_SPLIT; /* entirely behind the eye: the clipper removes it */
