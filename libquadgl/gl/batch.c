@@ -22,24 +22,39 @@ static size_t type_size(unsigned type)
     return type == GL_DOUBLE ? 8 : type == GL_UNSIGNED_BYTE ? 1 : 4;
 }
 
-/* Element i of a into dst[0..dim), components past a->size set from def. */
-static void fetch(const qgl_attrib *a, size_t i, float *dst, int dim, const float def[4])
+/* c / 255 as GL converts unsigned bytes, computed by the compiler: a division per component
+ * costs more than the rest of the copy. */
+#define U1(c) ((float)(c) / 255.0f)
+#define U4(c) U1(c), U1((c) + 1), U1((c) + 2), U1((c) + 3)
+#define U16(c) U4(c), U4((c) + 4), U4((c) + 8), U4((c) + 12)
+#define U64(c) U16(c), U16((c) + 16), U16((c) + 32), U16((c) + 48)
+static const float unorm[256] = {U64(0), U64(64), U64(128), U64(192)};
+
+/* Attribute a of the n vertices (idx[i], or i) into dst, dim floats each, components past
+ * a->size set from def. One loop per source type, so the per-vertex work is copies. */
+static void convert_attrib(const qgl_attrib *a, const uint32_t *idx, size_t n, float *dst, int dim,
+                           const float def[4])
 {
     size_t es = type_size(a->type);
     size_t stride = a->stride ? (size_t)a->stride : es * (size_t)a->size;
-    const unsigned char *p = (const unsigned char *)a->ptr + i * stride;
-    for (int k = 0; k < dim; k++) {
-        if (k >= a->size) {
-            dst[k] = def[k];
-        } else if (a->type == GL_DOUBLE) {
-            double d;
-            memcpy(&d, p + 8 * (size_t)k, 8);
-            dst[k] = (float)d;
+    int size = a->size < dim ? a->size : dim;
+    for (size_t i = 0; i < n; i++, dst += dim) {
+        const unsigned char *p = (const unsigned char *)a->ptr + (idx ? idx[i] : i) * stride;
+        if (a->type == GL_DOUBLE) {
+            for (int k = 0; k < size; k++) {
+                double d;
+                memcpy(&d, p + 8 * (size_t)k, 8);
+                dst[k] = (float)d;
+            }
         } else if (a->type == GL_UNSIGNED_BYTE) {
-            dst[k] = p[k] / 255.0f;
+            for (int k = 0; k < size; k++)
+                dst[k] = unorm[p[k]];
         } else {
-            memcpy(&dst[k], p + 4 * (size_t)k, 4);
+            for (int k = 0; k < size; k++) /* fixed-size copies, inlined (a call per vertex is not) */
+                memcpy(&dst[k], p + 4 * (size_t)k, 4);
         }
+        for (int k = size; k < dim; k++)
+            dst[k] = def[k];
     }
 }
 
@@ -69,21 +84,20 @@ static unsigned batch_mask(const qgl_quad_batch *b)
 static void convert(const qgl_quad_batch *b, qgl__verts *v)
 {
     static const float def[4] = {0, 0, 0, 1};
-    for (size_t i = 0; i < v->n; i++) {
-        size_t s = b->indices ? b->indices[i] : i;
-        fetch(&b->position, s, v->pos + 4 * i, 4, def);
-        if (v->mask & QGL__A_COLOR)
-            fetch(&b->color, s, v->col + 4 * i, 4, def);
-        if (v->mask & QGL__A_NORMAL)
-            fetch(&b->normal, s, v->nrm + 3 * i, 3, def);
-        if (v->mask & QGL__A_COLOR2)
-            fetch(&b->secondary_color, s, v->col2 + 3 * i, 3, def);
-        if (v->mask & QGL__A_FOG)
-            fetch(&b->fog_coord, s, v->fog + i, 1, def);
-        for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-            if (v->mask & (QGL__A_TEX0 << u))
-                fetch(&b->texcoord[u], s, v->tex[u] + 4 * i, 4, def);
-    }
+    const uint32_t *idx = b->indices;
+    size_t n = v->n;
+    convert_attrib(&b->position, idx, n, v->pos, 4, def);
+    if (v->mask & QGL__A_COLOR)
+        convert_attrib(&b->color, idx, n, v->col, 4, def);
+    if (v->mask & QGL__A_NORMAL)
+        convert_attrib(&b->normal, idx, n, v->nrm, 3, def);
+    if (v->mask & QGL__A_COLOR2)
+        convert_attrib(&b->secondary_color, idx, n, v->col2, 3, def);
+    if (v->mask & QGL__A_FOG)
+        convert_attrib(&b->fog_coord, idx, n, v->fog, 1, def);
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (v->mask & (QGL__A_TEX0 << u))
+            convert_attrib(&b->texcoord[u], idx, n, v->tex[u], 4, def);
 }
 
 int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v)

@@ -16,7 +16,7 @@
 #include <string.h>
 
 /* Vertices per immediate-mode chunk (a multiple of 4; a strip keeps its last two). */
-#define PL_CHUNK 65536
+#define PL_CHUNK 16384
 
 void pl_prim_reset(pl_prim *p, GLenum mode)
 {

@@ -9,7 +9,8 @@
  * by qgl_gl_flush; smooth, the pictures must agree within 1/255 per channel (the unrolled
  * strips start at another corner: the same weights, other rounding) with identical coverage;
  * flat shaded, exactly (the provoking vertex must survive the unrolling). The batching
- * context must issue fewer draws, and leave the same current colour and texture coordinate. */
+ * context must issue fewer draws, and leave the same current colour and texture coordinate.
+ * Before that, qgl_draw_quads' conversion of its source types (see conversion()). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -110,6 +111,46 @@ static void compare(th_ctx *t, qgl_context *direct, qgl_context *batched, const 
     free(b.img);
 }
 
+/* qgl_draw_quads converts every source type alike: float xy with unsigned byte colours, and
+ * the same quads as indexed, strided double xyz with float colours c / 255, must draw the
+ * same pixels. */
+static void conversion(th_ctx *t)
+{
+    static const float pos[8] = {-0.9f, -0.8f, 0.7f, -0.9f, 0.8f, 0.85f, -0.75f, 0.7f};
+    static const unsigned char col[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 200, 200, 30};
+    struct { double xyz[3]; float rgb[3]; } v[4];
+    static const uint32_t idx[4] = {2, 0, 3, 1}; /* v holds corner k at slot idx[k] */
+    for (int k = 0; k < 4; k++) {
+        v[idx[k]].xyz[0] = pos[2 * k], v[idx[k]].xyz[1] = pos[2 * k + 1], v[idx[k]].xyz[2] = 0;
+        for (int c = 0; c < 3; c++)
+            v[idx[k]].rgb[c] = (float)col[3 * k + c] / 255.0f;
+    }
+    unsigned char *img[2];
+    for (int pass = 0; pass < 2; pass++) {
+        qgl_quad_batch b = {.topology = QGL_QUADS, .count = 4};
+        if (pass == 0) {
+            b.position = (qgl_attrib){pos, 2, GL_FLOAT, 0};
+            b.color = (qgl_attrib){col, 3, GL_UNSIGNED_BYTE, 0};
+        } else {
+            b.indices = idx;
+            b.position = (qgl_attrib){v[0].xyz, 3, GL_DOUBLE, (int)sizeof v[0]};
+            b.color = (qgl_attrib){v[0].rgb, 3, GL_FLOAT, (int)sizeof v[0]};
+        }
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        th_check(qgl_draw_quads(t->qgl, &b) == 1, "conversion pass %d: not drawn", pass);
+        img[pass] = th_snapshot(t);
+    }
+    int covered = 0, differ = 0;
+    for (int i = 0; i < t->w * t->h; i++) {
+        covered += img[0][4 * i + 3] != 0;
+        differ += memcmp(img[0] + 4 * i, img[1] + 4 * i, 4) != 0;
+    }
+    printf("convert covered %d, pixels differing %d\n", covered, differ);
+    th_check(covered > 10000 && differ == 0, "float/ubyte and indexed double/float batches differ");
+    free(img[0]);
+    free(img[1]);
+}
+
 int main(void)
 {
     th_ctx t;
@@ -128,6 +169,7 @@ int main(void)
     sc_jitter_grid(m, 8, 0.35f, 0.2f, 5u, 1);
     for (int i = 0; i < m->nverts; i++)
         m->pos[i][1] = m->pos[i][1] * 0.6f - 0.2f;
+    conversion(&t);
     sc_camera(-25, 10);
     glEnable(GL_DEPTH_TEST);
     compare(&t, t.qgl, batched, m, "smooth", 1);
