@@ -147,8 +147,9 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     ctx->split_error = d.split_error;
     const char *se = secure_getenv("QUADGL_SPLIT_ERROR"); /* a scale; negative turns the rule off */
     char *end;
-    if (!d.split_error && se && strtof(se, &end) != 0 && end != se)
-        ctx->split_error = strtof(se, NULL);
+    float se_value = se ? strtof(se, &end) : 0;
+    if (!d.split_error && se && end != se && se_value != 0)
+        ctx->split_error = se_value;
     ctx->exclusive = d.assume_exclusive != 0;
     int glsl120_ok = probe_driver(ctx, &d);
     if (ctx->has_vao)
@@ -248,6 +249,28 @@ int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned need)
     v->cap = cap;
     v->alloc = all;
     return 1;
+}
+
+void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
+{
+    unsigned m = s->mask;
+    memcpy(d->pos + 4 * i, s->pos + 4 * j, 4 * sizeof(float));
+    if (m & QGL__A_COLOR)
+        memcpy(d->col + 4 * i, s->col + 4 * j, 4 * sizeof(float));
+    if (m & QGL__A_NORMAL)
+        memcpy(d->nrm + 3 * i, s->nrm + 3 * j, 3 * sizeof(float));
+    if (m & QGL__A_COLOR2)
+        memcpy(d->col2 + 3 * i, s->col2 + 3 * j, 3 * sizeof(float));
+    if (m & QGL__A_FOG)
+        d->fog[i] = s->fog[j];
+    if (m & QGL__A_EDGE)
+        d->edge[i] = s->edge[j];
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (m & (QGL__A_TEX0 << u))
+            memcpy(d->tex[u] + 4 * i, s->tex[u] + 4 * j, 4 * sizeof(float));
+    if (m & QGL__A_MATERIAL)
+        memcpy(d->mat + QGL__MATERIAL_FLOATS * i, s->mat + QGL__MATERIAL_FLOATS * j,
+               QGL__MATERIAL_FLOATS * sizeof(float));
 }
 
 void qgl__verts_free(qgl__verts *v)

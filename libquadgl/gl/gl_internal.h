@@ -187,6 +187,9 @@ typedef struct qgl__verts {
 
 int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned mask);
 void qgl__verts_free(qgl__verts *v);
+/* Vertex j of s (its position and every attribute in s->mask) to vertex i of d, which has room;
+ * d may be s (i != j). */
+void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j);
 
 /* ---- the fixed-function state a generated program reproduces (its key) ------------------ */
 

@@ -37,7 +37,7 @@ enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, NLOC = 13 };
 #define MAX_PROGRAMS 32
 
 struct qgl__glsl120 {
-    struct { unsigned key; GLuint prog; } programs[MAX_PROGRAMS];
+    struct { unsigned key; GLuint prog; GLint px_loc; } programs[MAX_PROGRAMS];
     int nprograms;
     GLuint vao, vbo;
     size_t vbo_size;  /* bytes */
@@ -208,13 +208,16 @@ static unsigned program_bits(unsigned key)
     return key & ~(3u << QGL__K_CORNER_SHIFT);
 }
 
-static GLuint program(qgl_context *ctx, unsigned key)
+/* The program of key, and its u_px location in *px_loc. */
+static GLuint program(qgl_context *ctx, unsigned key, GLint *px_loc)
 {
     struct qgl__glsl120 *g = ctx->glsl120;
     unsigned bits = program_bits(key);
     for (int i = 0; i < g->nprograms; i++)
-        if (g->programs[i].key == bits)
+        if (g->programs[i].key == bits) {
+            *px_loc = g->programs[i].px_loc;
             return g->programs[i].prog;
+        }
     GLuint prog = build(ctx, bits);
     if (!prog)
         return 0;
@@ -223,6 +226,7 @@ static GLuint program(qgl_context *ctx, unsigned key)
         ctx->gl.DeleteProgram(g->programs[slot].prog);
     g->programs[slot].key = bits;
     g->programs[slot].prog = prog;
+    g->programs[slot].px_loc = *px_loc = ctx->gl.GetUniformLocation(prog, "u_px");
     return prog;
 }
 
@@ -253,7 +257,8 @@ int qgl__glsl120_init(qgl_context *ctx)
         ctx->gl.GenBuffers(1, &ctx->glsl120->vbo);
         ctx->gl.BindVertexArray((GLuint)vao);
     }
-    if (program(ctx, QGL__K_COLOR)) /* proves the path works on this driver */
+    GLint px_loc;
+    if (program(ctx, QGL__K_COLOR, &px_loc)) /* proves the path works on this driver */
         return 1;
     qgl__glsl120_free(ctx);
     return 0;
@@ -447,7 +452,8 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
 {
     if (!ctx->glsl120 || (key & ~(unsigned)KNOWN_KEY))
         return 0;
-    GLuint prog = program(ctx, key);
+    GLint px_loc = -1;
+    GLuint prog = program(ctx, key, &px_loc);
     if (!prog)
         return 0;
     layout l = layout_of(key);
@@ -468,8 +474,7 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     if (*bound != (GLint)prog)
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
     /* the weights in isotropic pixel units: x and y scaled by the viewport's half size */
-    ctx->gl.Uniform2f(ctx->gl.GetUniformLocation(prog, "u_px"), 0.5f * (float)st->viewport[2],
-                      0.5f * (float)st->viewport[3]);
+    ctx->gl.Uniform2f(px_loc, 0.5f * (float)st->viewport[2], 0.5f * (float)st->viewport[3]);
     if (ctx->glsl120->vao)
         submit_arrays(ctx, &l, n);
     else

@@ -115,25 +115,6 @@ static void copy_attribs(qgl_context *c, qgl__verts *v, size_t i, unsigned g)
 #define QGL__CHUNK 16384
 #endif
 
-static void move_vertex(qgl__verts *v, unsigned mask, size_t dst, size_t src)
-{
-    struct { unsigned bit; void *a; size_t size; } arrays[6 + QGL_MAX_TEXUNITS] = {
-        {0, v->pos, 16}, {QGL__A_COLOR, v->col, 16}, {QGL__A_NORMAL, v->nrm, 12}, {QGL__A_COLOR2, v->col2, 12},
-        {QGL__A_FOG, v->fog, 4}, {QGL__A_EDGE, v->edge, 1}};
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-        arrays[6 + u].bit = QGL__A_TEX0 << u;
-        arrays[6 + u].a = v->tex[u];
-        arrays[6 + u].size = 16;
-    }
-    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        if (!arrays[k].bit || (mask & arrays[k].bit))
-            memcpy((char *)arrays[k].a + dst * arrays[k].size, (char *)arrays[k].a + src * arrays[k].size,
-                   arrays[k].size);
-    if (mask & QGL__A_MATERIAL)
-        memcpy(v->mat + dst * QGL__MATERIAL_FLOATS, v->mat + src * QGL__MATERIAL_FLOATS,
-               QGL__MATERIAL_FLOATS * sizeof(float));
-}
-
 /* Draw the quads captured so far (after anything batched before them) and go on capturing
  * the same primitive; a strip keeps its last two vertices, the first edge of what follows. */
 static void draw_chunk(qgl_context *c)
@@ -146,8 +127,8 @@ static void draw_chunk(qgl_context *c)
     size_t n = v->n;
     v->n = 0;
     if (topo == QGL_QUAD_STRIP) {
-        move_vertex(v, c->given, 0, n - 2);
-        move_vertex(v, c->given, 1, n - 1);
+        qgl__verts_copy(v, 0, v, n - 2);
+        qgl__verts_copy(v, 1, v, n - 1);
         v->n = 2;
     }
 }

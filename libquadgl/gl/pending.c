@@ -50,23 +50,6 @@ static void fill_current(qgl_context *ctx, qgl__verts *v, size_t from, size_t to
     }
 }
 
-static void copy_vertex(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
-{
-    unsigned m = s->mask;
-    memcpy(d->pos + 4 * i, s->pos + 4 * j, 4 * sizeof(float));
-    if (m & QGL__A_COLOR)
-        memcpy(d->col + 4 * i, s->col + 4 * j, 4 * sizeof(float));
-    if (m & QGL__A_NORMAL)
-        memcpy(d->nrm + 3 * i, s->nrm + 3 * j, 3 * sizeof(float));
-    if (m & QGL__A_COLOR2)
-        memcpy(d->col2 + 3 * i, s->col2 + 3 * j, 3 * sizeof(float));
-    if (m & QGL__A_FOG)
-        d->fog[i] = s->fog[j];
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (m & (QGL__A_TEX0 << u))
-            memcpy(d->tex[u] + 4 * i, s->tex[u] + 4 * j, 4 * sizeof(float));
-}
-
 /* Append the nq quads of v to the pending batch. GL_QUADS keep their order; strip quad k
  * (corners v2k, v2k+1, v2k+3, v2k+2) starts at the corner that puts its provoking vertex
  * where a GL_QUADS quad has it: v2k+3 last under the last-vertex convention, v2k first under
@@ -81,7 +64,7 @@ static int append(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size
     int shift = topo == QGL_QUAD_STRIP && qgl__flat_corner(ctx, topo) == 2 ? 3 : 0;
     for (size_t q = 0; q < nq; q++)
         for (int c = 0; c < 4; c++)
-            copy_vertex(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
+            qgl__verts_copy(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
     p->n = n0 + 4 * nq;
     fill_current(ctx, p, n0, p->n, p->mask & ~v->mask);
     p->mask |= v->mask;
