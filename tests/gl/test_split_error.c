@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness.h"
+#include "scenes.h"
 
 enum { W = 256, H = 256, N = 16, NV = 4 * N * N };
 
@@ -53,13 +53,7 @@ static qgl_quad_batch batch(int textured)
 static void view(void)
 {
     glViewport(0, 0, W, H);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glFrustum(-0.6, 0.6, -0.6, 0.6, 1, 10);
-    glMatrixMode(GL_MODELVIEW);
-    glLoadIdentity();
-    glTranslatef(0, 0, -2.6f);
-    glRotatef(-55, 1, 0, 0);
+    sc_camera(-55, 0);
 }
 
 /* 64 x 64, LINEAR: an 8-texel checker of 64 levels over gentle gradients. */
