@@ -53,9 +53,10 @@ static float env_float(const char *name, float def)
     return s && end != s && v > 0 ? v : def;
 }
 
-static int has_extension(qgl_context *ctx, int major, const char *name)
+int qgl__has_extension(qgl_context *ctx, const char *name)
 {
     struct qgl__gl *gl = &ctx->gl;
+    int major = ctx->version / 10;
     if (major >= 3 && gl->GetStringi) {
         GLint n = 0;
         gl->GetIntegerv(GL_NUM_EXTENSIONS, &n);
@@ -74,21 +75,12 @@ static int has_extension(qgl_context *ctx, int major, const char *name)
     return 0;
 }
 
-/* Our own vertex array object and buffers: drawing through them leaves the application's
- * vertex array state alone (only the bindings need restoring). */
+/* Our own vertex array object: drawing through it leaves the application's vertex array
+ * state alone (only the bindings need restoring). Its arrays point into the stream buffer. */
 static void create_objects(qgl_context *ctx)
 {
-    struct qgl__gl *gl = &ctx->gl;
-    GLint vao = 0, vbo = 0;
-    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
-    gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &vbo);
-    gl->GenVertexArrays(1, &ctx->vao);
-    gl->GenBuffers(1, &ctx->vbo);
-    gl->GenBuffers(1, &ctx->ibo);
-    gl->BindVertexArray(ctx->vao);
-    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->ibo);
-    gl->BindVertexArray((GLuint)vao);
-    gl->BindBuffer(GL_ARRAY_BUFFER, (GLuint)vbo);
+    ctx->gl.GenVertexArrays(1, &ctx->vao);
+    qgl__stream_init(ctx);
 }
 
 /* Returns whether the GLSL 1.20 path may serve (GL 2.0 compatibility, GLSL 1.20, allowed). */
@@ -112,8 +104,8 @@ static int probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
         gl->GetBooleanv(GL_QUADS_FOLLOW_PROVOKING_VERTEX_CONVENTION, &follow);
         ctx->quads_follow_pv = follow;
     }
-    ctx->has_arb_programs = has_extension(ctx, major, "GL_ARB_fragment_program") ||
-                            has_extension(ctx, major, "GL_ARB_vertex_program");
+    ctx->has_arb_programs = qgl__has_extension(ctx, "GL_ARB_fragment_program") ||
+                            qgl__has_extension(ctx, "GL_ARB_vertex_program");
     gl->GetIntegerv(GL_MAX_TEXTURE_UNITS, &ctx->max_units);
     gl->GetIntegerv(GL_MAX_CLIP_PLANES, &ctx->max_clip_planes);
     int cap = d->max_glsl ? d->max_glsl : 1000;
@@ -170,15 +162,13 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     free(ctx->arrays);
     if (ctx->has_vao) {
         ctx->gl.DeleteVertexArrays(1, &ctx->vao);
-        ctx->gl.DeleteBuffers(1, &ctx->vbo);
-        ctx->gl.DeleteBuffers(1, &ctx->ibo);
+        qgl__stream_free(ctx);
     }
     qgl__verts_free(&ctx->cap);
     qgl__verts_free(&ctx->sub);
     qgl__verts_free(&ctx->pend);
     free(ctx->clip);
     free(ctx->path);
-    free(ctx->idx);
     free(ctx);
 }
 

@@ -630,15 +630,13 @@ static void restore(qgl_context *ctx, const saved *s)
 }
 
 /* Per-vertex materials (shader path only) as generic attributes of our VAO, at off. */
-static void upload_materials(qgl_context *ctx, const qgl__verts *v, size_t off)
+static void point_materials(qgl_context *ctx, const qgl__verts *v, size_t off)
 {
     struct qgl__gl *gl = &ctx->gl;
     int on = (v->mask & QGL__A_MATERIAL) != 0;
     if (!on && !ctx->material_arrays)
         return;
     const GLsizei stride = QGL__MATERIAL_FLOATS * sizeof(float);
-    if (on)
-        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)(v->n * (size_t)stride), v->mat);
     for (GLuint k = 0; k < QGL__NMATERIAL; k++) {
         if (on) {
             gl->VertexAttribPointer(QGL__LOC_MATERIAL + k, k < 8 ? 4 : 2, GL_FLOAT, GL_FALSE, stride,
@@ -651,69 +649,69 @@ static void upload_materials(qgl_context *ctx, const qgl__verts *v, size_t off)
     ctx->material_arrays = on;
 }
 
-/* Upload v into our buffer (one block per attribute) and point our VAO's arrays at it. */
-static void upload(qgl_context *ctx, const qgl__verts *v)
+/* Copy v into the stream buffer (one block per attribute, then the strip indices of nidx
+ * quads) and point our VAO's arrays at it; 0 when the driver refused the buffer. */
+static int upload(qgl_context *ctx, const qgl__verts *v, size_t nidx)
 {
     struct qgl__gl *gl = &ctx->gl;
-    size_t n = v->n, off = 0;
-    struct { unsigned bit; const void *data; size_t size; } blocks[6 + QGL_MAX_TEXUNITS] = {
+    size_t n = v->n;
+    struct { unsigned bit; const void *data; size_t size; } blocks[7 + QGL_MAX_TEXUNITS] = {
         {0, v->pos, 16}, {QGL__A_COLOR, v->col, 16}, {QGL__A_NORMAL, v->nrm, 12},
-        {QGL__A_COLOR2, v->col2, 12}, {QGL__A_FOG, v->fog, 4}, {QGL__A_EDGE, v->edge, 1}};
+        {QGL__A_COLOR2, v->col2, 12}, {QGL__A_FOG, v->fog, 4}, {QGL__A_EDGE, v->edge, 1},
+        {QGL__A_MATERIAL, v->mat, QGL__MATERIAL_FLOATS * sizeof(float)}};
     for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-        blocks[6 + u].bit = QGL__A_TEX0 << u;
-        blocks[6 + u].data = v->tex[u];
-        blocks[6 + u].size = 16;
+        blocks[7 + u].bit = QGL__A_TEX0 << u;
+        blocks[7 + u].data = v->tex[u];
+        blocks[7 + u].size = 16;
     }
-    size_t total = 0;
+    size_t total = 16 * nidx, base = 0, off[7 + QGL_MAX_TEXUNITS];
     for (size_t b = 0; b < sizeof blocks / sizeof blocks[0]; b++)
         if (!blocks[b].bit || (v->mask & blocks[b].bit))
             total += (n * blocks[b].size + 15) & ~(size_t)15;
     gl->BindVertexArray(ctx->vao);
-    gl->BindBuffer(GL_ARRAY_BUFFER, ctx->vbo);
-    if (v->mask & QGL__A_MATERIAL)
-        total += n * QGL__MATERIAL_FLOATS * sizeof(float);
-    if (total > ctx->vbo_size) { /* grow only: reallocating every batch costs page faults */
-        ctx->vbo_size = total + total / 2;
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)ctx->vbo_size, NULL, GL_STREAM_DRAW);
-    }
+    unsigned char *map = qgl__stream_begin(ctx, total, &base);
+    if (!map)
+        return 0;
+    size_t at = 0;
     for (size_t b = 0; b < sizeof blocks / sizeof blocks[0]; b++) {
-        unsigned bit = blocks[b].bit;
+        off[b] = base + at;
+        if (!blocks[b].bit || (v->mask & blocks[b].bit)) {
+            memcpy(map + at, blocks[b].data, n * blocks[b].size);
+            at += (n * blocks[b].size + 15) & ~(size_t)15;
+        }
+    }
+    uint32_t *idx = (uint32_t *)(map + at);
+    for (size_t q = 0; q < nidx; q++)
+        for (int c = 0; c < 4; c++)
+            idx[4 * q + c] = (uint32_t)qgl__corner(QGL_QUAD_STRIP, q, c);
+    ctx->idx_offset = base + at;
+    qgl__stream_end(ctx);
+    if (nidx)
+        gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->stream.buf); /* our VAO's */
+    for (size_t b = 0; b < 6 + QGL_MAX_TEXUNITS; b++) {
+        size_t k = b < 6 ? b : b + 1; /* materials are generic attributes, below */
+        unsigned bit = blocks[k].bit;
         int on = !bit || (v->mask & bit);
-        const void *at = (const void *)(uintptr_t)off;
-        if (on)
-            gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)(n * blocks[b].size), blocks[b].data);
+        const void *p = (const void *)(uintptr_t)off[k];
         GLenum array = 0;
         switch (bit) {
-        case 0: gl->VertexPointer(4, GL_FLOAT, 0, at); array = GL_VERTEX_ARRAY; break;
-        case QGL__A_COLOR: gl->ColorPointer(4, GL_FLOAT, 0, at); array = GL_COLOR_ARRAY; break;
-        case QGL__A_NORMAL: gl->NormalPointer(GL_FLOAT, 0, at); array = GL_NORMAL_ARRAY; break;
-        case QGL__A_COLOR2: gl->SecondaryColorPointer(3, GL_FLOAT, 0, at); array = GL_SECONDARY_COLOR_ARRAY; break;
-        case QGL__A_FOG: gl->FogCoordPointer(GL_FLOAT, 0, at); array = GL_FOG_COORD_ARRAY; break;
-        case QGL__A_EDGE: gl->EdgeFlagPointer(0, at); array = GL_EDGE_FLAG_ARRAY; break;
+        case 0: gl->VertexPointer(4, GL_FLOAT, 0, p); array = GL_VERTEX_ARRAY; break;
+        case QGL__A_COLOR: gl->ColorPointer(4, GL_FLOAT, 0, p); array = GL_COLOR_ARRAY; break;
+        case QGL__A_NORMAL: gl->NormalPointer(GL_FLOAT, 0, p); array = GL_NORMAL_ARRAY; break;
+        case QGL__A_COLOR2: gl->SecondaryColorPointer(3, GL_FLOAT, 0, p); array = GL_SECONDARY_COLOR_ARRAY; break;
+        case QGL__A_FOG: gl->FogCoordPointer(GL_FLOAT, 0, p); array = GL_FOG_COORD_ARRAY; break;
+        case QGL__A_EDGE: gl->EdgeFlagPointer(0, p); array = GL_EDGE_FLAG_ARRAY; break;
         default:
-            gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)(b - 6));
-            gl->TexCoordPointer(4, GL_FLOAT, 0, at);
+            gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)(k - 7));
+            gl->TexCoordPointer(4, GL_FLOAT, 0, p);
             array = GL_TEXTURE_COORD_ARRAY;
         }
         if (on)
             gl->EnableClientState(array);
         else
             gl->DisableClientState(array);
-        if (on)
-            off += (n * blocks[b].size + 15) & ~(size_t)15;
     }
-    upload_materials(ctx, v, off);
-}
-
-/* Corner indices (lines_adjacency order) of strip quads, in our element buffer. */
-static int upload_strip_indices(qgl_context *ctx, size_t nq)
-{
-    if (!ensure((void **)&ctx->idx, &ctx->idx_cap, 4 * nq, sizeof(uint32_t)))
-        return 0;
-    for (size_t q = 0; q < nq; q++)
-        for (int c = 0; c < 4; c++)
-            ctx->idx[4 * q + c] = (uint32_t)qgl__corner(QGL_QUAD_STRIP, q, c);
-    ctx->gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(16 * nq), ctx->idx, GL_STREAM_DRAW);
+    point_materials(ctx, v, off[6]);
     return 1;
 }
 
@@ -796,7 +794,7 @@ static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
         ctx->gl.DrawArrays(GL_LINES_ADJACENCY, (GLint)(4 * q0), (GLsizei)(4 * nq));
     else
         ctx->gl.DrawElements(GL_LINES_ADJACENCY, (GLsizei)(4 * nq), GL_UNSIGNED_INT,
-                             (const void *)(uintptr_t)(16 * q0));
+                             (const void *)(uintptr_t)(ctx->idx_offset + 16 * q0));
     ctx->stats.draws++;
     return 1;
 }
@@ -812,11 +810,11 @@ static void draw_subdiv(qgl_context *ctx, const qgl__state *st, const qgl__verts
         return;
     if (*bound != app_program)
         ctx->gl.UseProgram((GLuint)(*bound = app_program));
-    upload(ctx, &ctx->sub);
-    ctx->gl.DrawArrays(GL_TRIANGLES, 0, (GLsizei)ctx->sub.n);
+    if (upload(ctx, &ctx->sub, 0))
+        ctx->gl.DrawArrays(GL_TRIANGLES, 0, (GLsizei)ctx->sub.n);
     ctx->stats.draws++;
     ctx->stats.subdiv_triangles += ctx->sub.n / 3;
-    upload(ctx, v); /* later runs draw from the batch again */
+    upload(ctx, v, topo == QGL_QUAD_STRIP ? qgl__nquads(topo, v->n) : 0); /* later runs draw from the batch again */
 }
 
 static void count(qgl_context *ctx, unsigned char path, size_t nq)
@@ -1004,9 +1002,10 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
     saved sv;
     if (ctx->has_vao) {
         save(ctx, &st, v->mask, &sv);
-        upload(ctx, v);
-        if (topo == QGL_QUAD_STRIP && !upload_strip_indices(ctx, nq))
+        if (!upload(ctx, v, topo == QGL_QUAD_STRIP ? nq : 0)) {
+            restore(ctx, &sv);
             return -1;
+        }
     }
     GLint bound = st.program;
     for (size_t q0 = 0; q0 < nq;) {

@@ -145,7 +145,10 @@
     X(void, DisableVertexAttribArray, (GLuint)) \
     X(void, ArrayElement, (GLint)) \
     X(void, GetPointerv, (GLenum, void **)) \
-    X(void, GetBufferSubData, (GLenum, GLintptr, GLsizeiptr, void *))
+    X(void, GetBufferSubData, (GLenum, GLintptr, GLsizeiptr, void *)) \
+    X(void, BufferStorage, (GLenum, GLsizeiptr, const void *, GLbitfield)) \
+    X(void *, MapBufferRange, (GLenum, GLintptr, GLsizeiptr, GLbitfield)) \
+    X(GLboolean, UnmapBuffer, (GLenum))
 
 #define QGL__MEMBER(ret, name, params) ret (*name) params;
 struct qgl__gl {
@@ -293,6 +296,14 @@ enum {
 
 #define QGL__MAX_PROGRAMS 64
 
+/* stream.c: the buffer batches are copied into for the driver (see there). */
+typedef struct qgl__stream {
+    GLuint buf;
+    unsigned char *map;       /* persistent mapping, or NULL */
+    size_t size, head;        /* bytes in buf, bytes used */
+    int persistent;           /* buffer storage available */
+} qgl__stream;
+
 struct qgl_context {
     struct qgl__gl gl;
     qgl_method method;
@@ -317,13 +328,13 @@ struct qgl_context {
     float cur_mat[QGL__MATERIAL_FLOATS];
 
     /* drawing */
-    GLuint vao, vbo, ibo;
-    size_t vbo_size;          /* bytes allocated in vbo: reused while large enough */
+    GLuint vao;               /* ours: its arrays point into the stream buffer */
+    qgl__stream stream;
     qgl__verts sub;           /* fallback output */
     double *clip;             /* 4 per vertex */
     unsigned char *path;      /* per quad */
-    uint32_t *idx;
-    size_t clip_cap, path_cap, idx_cap;
+    size_t idx_offset;        /* the batch's strip indices in the stream buffer */
+    size_t clip_cap, path_cap;
     struct {
         uint32_t hash;
         GLuint prog;
@@ -411,6 +422,16 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
 /* fallback.c: append the subdivision of quad q of v to out (same attributes as v). */
 int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
                    size_t q, qgl__verts *out);
+
+/* stream.c: bytes of room in the stream buffer (bound to GL_ARRAY_BUFFER), its offset in
+ * *offset; write it, then qgl__stream_end before drawing. NULL when the driver refuses. */
+void qgl__stream_init(qgl_context *ctx);
+void *qgl__stream_begin(qgl_context *ctx, size_t bytes, size_t *offset);
+void qgl__stream_end(qgl_context *ctx);
+void qgl__stream_free(qgl_context *ctx);
+
+/* context.c: whether the context's driver offers an extension. */
+int qgl__has_extension(qgl_context *ctx, const char *name);
 
 /* Per-thread current context (read directly on the immediate-mode hot path). */
 extern __attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;

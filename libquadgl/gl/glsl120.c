@@ -39,8 +39,7 @@ enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, NLOC = 13 };
 struct qgl__glsl120 {
     struct { unsigned key; GLuint prog; GLint px_loc; } programs[MAX_PROGRAMS];
     int nprograms;
-    GLuint vao, vbo;
-    size_t vbo_size;  /* bytes */
+    GLuint vao;
     float *buf;       /* interleaved emitted vertices */
     size_t buf_cap;   /* floats */
 };
@@ -254,7 +253,6 @@ int qgl__glsl120_init(qgl_context *ctx)
         GLint vao = 0;
         ctx->gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
         ctx->gl.GenVertexArrays(1, &ctx->glsl120->vao);
-        ctx->gl.GenBuffers(1, &ctx->glsl120->vbo);
         ctx->gl.BindVertexArray((GLuint)vao);
     }
     GLint px_loc;
@@ -273,7 +271,6 @@ void qgl__glsl120_free(qgl_context *ctx)
         ctx->gl.DeleteProgram(g->programs[i].prog);
     if (g->vao) {
         ctx->gl.DeleteVertexArrays(1, &g->vao);
-        ctx->gl.DeleteBuffers(1, &g->vbo);
     }
     free(g->buf);
     free(g);
@@ -397,32 +394,33 @@ static int locations(const layout *l, GLuint loc[NLOC - 1])
     return n;
 }
 
-/* Stream from our buffer behind our vertex array object (the caller restores the bindings). */
-static void submit_arrays(qgl_context *ctx, const layout *l, size_t n)
+/* Stream through the stream buffer behind our vertex array object (the caller restores the
+ * bindings); 0 when the driver refused the buffer. */
+static int submit_arrays(qgl_context *ctx, const layout *l, size_t n)
 {
     struct qgl__gl *gl = &ctx->gl;
     struct qgl__glsl120 *g = ctx->glsl120;
-    size_t bytes = n * (size_t)l->stride * sizeof(float);
+    size_t bytes = n * (size_t)l->stride * sizeof(float), off = 0;
     GLsizei stride = (GLsizei)(l->stride * sizeof(float));
     gl->BindVertexArray(g->vao);
-    gl->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
-    if (bytes > g->vbo_size) {
-        g->vbo_size = bytes + bytes / 2;
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)g->vbo_size, NULL, GL_STREAM_DRAW);
-    }
-    gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, g->buf);
-    gl->VertexPointer(4, GL_FLOAT, stride, NULL);
+    void *map = qgl__stream_begin(ctx, bytes, &off);
+    if (!map)
+        return 0;
+    memcpy(map, g->buf, bytes);
+    qgl__stream_end(ctx);
+    gl->VertexPointer(4, GL_FLOAT, stride, (const void *)(uintptr_t)off);
     gl->EnableClientState(GL_VERTEX_ARRAY);
     for (int i = 0; i < NLOC - 1; i++) /* a previous key may have used more */
         gl->DisableVertexAttribArray((GLuint)(LOC_POS + i));
     GLuint loc[NLOC - 1];
     int nattr = locations(l, loc);
     for (int a = 0; a < nattr; a++) {
-        gl->VertexAttribPointer(loc[a], 4, GL_FLOAT, GL_FALSE, stride, (const void *)(uintptr_t)(16 * (1 + a)));
+        gl->VertexAttribPointer(loc[a], 4, GL_FLOAT, GL_FALSE, stride, (const void *)(uintptr_t)(off + 16 * (1 + a)));
         gl->EnableVertexAttribArray(loc[a]);
     }
     gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)n);
     gl->BindVertexArray(ctx->vao); /* later runs of the batch draw from the batch's arrays */
+    return 1;
 }
 
 /* Immediate mode, for contexts without vertex array objects: the application's arrays stay
@@ -475,9 +473,7 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
     /* the weights in isotropic pixel units: x and y scaled by the viewport's half size */
     ctx->gl.Uniform2f(px_loc, 0.5f * (float)st->viewport[2], 0.5f * (float)st->viewport[3]);
-    if (ctx->glsl120->vao)
-        submit_arrays(ctx, &l, n);
-    else
+    if (!ctx->glsl120->vao || !submit_arrays(ctx, &l, n))
         submit_immediate(ctx, &l, n);
     if (!ctx->has_vao) /* no restore() follows: give the application its program back now */
         ctx->gl.UseProgram((GLuint)(*bound = st->program));

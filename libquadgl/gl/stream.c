@@ -1,0 +1,87 @@
+/* stream.c: vertex data handed to the driver through one buffer object that is only appended to.
+ *
+ * A batch's arrays are copied into a buffer the driver keeps mapped (GL 4.4 buffer storage,
+ * persistent and coherent), each batch after the previous one; when the buffer is full it is
+ * replaced by a fresh one (the driver frees the old one once the draws reading it are done).
+ * So writing never waits for the driver, and no draw in flight sees its data change.
+ * Rewriting one buffer with glBufferSubData instead made llvmpipe finish its whole scene at
+ * every batch (the buffer was still in use), several times the cost of the draws themselves.
+ * Without buffer storage the same discipline runs on ranges mapped unsynchronized, the buffer
+ * orphaned when full. */
+#include "gl_internal.h"
+
+/* Bytes per buffer: a few batches of a typical frame, small next to a program's memory. */
+#define QGL__STREAM_SIZE ((size_t)1 << 20)
+
+/* Deleting a buffer unmaps it; the driver keeps its storage while draws still read it. */
+static void stream_release(qgl_context *ctx)
+{
+    qgl__stream *s = &ctx->stream;
+    if (!s->buf)
+        return;
+    ctx->gl.DeleteBuffers(1, &s->buf);
+    s->buf = 0;
+    s->map = NULL;
+}
+
+/* A fresh buffer of at least bytes, bound to GL_ARRAY_BUFFER. */
+static int stream_renew(qgl_context *ctx, size_t bytes)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    qgl__stream *s = &ctx->stream;
+    const GLbitfield persistent = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    size_t size = bytes > QGL__STREAM_SIZE ? bytes : QGL__STREAM_SIZE;
+    if (s->buf && s->persistent)
+        stream_release(ctx);
+    if (!s->buf)
+        gl->GenBuffers(1, &s->buf);
+    gl->BindBuffer(GL_ARRAY_BUFFER, s->buf);
+    s->head = 0;
+    s->size = size;
+    if (s->persistent) {
+        gl->BufferStorage(GL_ARRAY_BUFFER, (GLsizeiptr)size, NULL, persistent);
+        s->map = gl->MapBufferRange(GL_ARRAY_BUFFER, 0, (GLsizeiptr)size, persistent);
+        return s->map != NULL;
+    }
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)size, NULL, GL_STREAM_DRAW);
+    return 1;
+}
+
+void qgl__stream_init(qgl_context *ctx)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    ctx->stream.persistent = gl->BufferStorage && gl->MapBufferRange && gl->UnmapBuffer &&
+                             (ctx->version >= 44 || qgl__has_extension(ctx, "GL_ARB_buffer_storage"));
+}
+
+void *qgl__stream_begin(qgl_context *ctx, size_t bytes, size_t *offset)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    qgl__stream *s = &ctx->stream;
+    bytes = (bytes + 15) & ~(size_t)15;
+    if (!s->buf || s->head + bytes > s->size) {
+        if (!stream_renew(ctx, bytes)) {
+            stream_release(ctx);
+            return NULL;
+        }
+    } else {
+        gl->BindBuffer(GL_ARRAY_BUFFER, s->buf);
+    }
+    *offset = s->head;
+    s->head += bytes;
+    if (s->persistent)
+        return s->map + *offset;
+    const GLbitfield unsync = GL_MAP_WRITE_BIT | GL_MAP_UNSYNCHRONIZED_BIT | GL_MAP_INVALIDATE_RANGE_BIT;
+    return gl->MapBufferRange(GL_ARRAY_BUFFER, (GLintptr)*offset, (GLsizeiptr)bytes, unsync);
+}
+
+void qgl__stream_end(qgl_context *ctx)
+{
+    if (!ctx->stream.persistent)
+        ctx->gl.UnmapBuffer(GL_ARRAY_BUFFER);
+}
+
+void qgl__stream_free(qgl_context *ctx)
+{
+    stream_release(ctx);
+}
