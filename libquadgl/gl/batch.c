@@ -69,15 +69,23 @@ static int batch_ok(const qgl_quad_batch *b)
     return ok;
 }
 
+/* The batch's array of attribute a (a row of QGL__ATTRIBS). */
+static const qgl_attrib *batch_attrib(const qgl_quad_batch *b, int a)
+{
+    switch (a) {
+    case QGL__AT_COLOR: return &b->color;
+    case QGL__AT_NORMAL: return &b->normal;
+    case QGL__AT_COLOR2: return &b->secondary_color;
+    case QGL__AT_FOG: return &b->fog_coord;
+    default: return &b->texcoord[qgl__attribs[a].unit];
+    }
+}
+
 static unsigned batch_mask(const qgl_quad_batch *b)
 {
     unsigned m = 0;
-    m |= b->color.size ? QGL__A_COLOR : 0;
-    m |= b->normal.size ? QGL__A_NORMAL : 0;
-    m |= b->secondary_color.size ? QGL__A_COLOR2 : 0;
-    m |= b->fog_coord.size ? QGL__A_FOG : 0;
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        m |= b->texcoord[u].size ? (unsigned)QGL__A_TEX0 << u : 0;
+    for (int a = 0; a < QGL__NATTR; a++)
+        m |= batch_attrib(b, a)->size ? 1u << a : 0;
     return m;
 }
 
@@ -87,17 +95,9 @@ static void convert(const qgl_quad_batch *b, qgl__verts *v)
     const uint32_t *idx = b->indices;
     size_t n = v->n;
     convert_attrib(&b->position, idx, n, v->pos, 4, def);
-    if (v->mask & QGL__A_COLOR)
-        convert_attrib(&b->color, idx, n, v->col, 4, def);
-    if (v->mask & QGL__A_NORMAL)
-        convert_attrib(&b->normal, idx, n, v->nrm, 3, def);
-    if (v->mask & QGL__A_COLOR2)
-        convert_attrib(&b->secondary_color, idx, n, v->col2, 3, def);
-    if (v->mask & QGL__A_FOG)
-        convert_attrib(&b->fog_coord, idx, n, v->fog, 1, def);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (v->mask & (QGL__A_TEX0 << u))
-            convert_attrib(&b->texcoord[u], idx, n, v->tex[u], 4, def);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (v->mask & (1u << a))
+            convert_attrib(batch_attrib(b, a), idx, n, v->attr[a], qgl__attribs[a].floats, def);
 }
 
 int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v)

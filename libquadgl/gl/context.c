@@ -226,13 +226,9 @@ int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned need)
         cap = 256;
     unsigned all = need | v->alloc;
     int ok = grow((void **)&v->pos, cap, 4 * sizeof(float));
-    ok = ok && (!(all & QGL__A_COLOR) || grow((void **)&v->col, cap, 4 * sizeof(float)));
-    ok = ok && (!(all & QGL__A_NORMAL) || grow((void **)&v->nrm, cap, 3 * sizeof(float)));
-    ok = ok && (!(all & QGL__A_COLOR2) || grow((void **)&v->col2, cap, 3 * sizeof(float)));
-    ok = ok && (!(all & QGL__A_FOG) || grow((void **)&v->fog, cap, sizeof(float)));
+    for (int a = 0; a < QGL__NATTR; a++)
+        ok = ok && (!(all & (1u << a)) || grow((void **)&v->attr[a], cap, (size_t)qgl__attribs[a].floats * sizeof(float)));
     ok = ok && (!(all & QGL__A_EDGE) || grow((void **)&v->edge, cap, 1));
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        ok = ok && (!(all & (QGL__A_TEX0 << u)) || grow((void **)&v->tex[u], cap, 4 * sizeof(float)));
     ok = ok && (!(all & QGL__A_MATERIAL) || grow((void **)&v->mat, cap, QGL__MATERIAL_FLOATS * sizeof(float)));
     if (!ok)
         return 0;
@@ -245,19 +241,13 @@ void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
 {
     unsigned m = s->mask;
     memcpy(d->pos + 4 * i, s->pos + 4 * j, 4 * sizeof(float));
-    if (m & QGL__A_COLOR)
-        memcpy(d->col + 4 * i, s->col + 4 * j, 4 * sizeof(float));
-    if (m & QGL__A_NORMAL)
-        memcpy(d->nrm + 3 * i, s->nrm + 3 * j, 3 * sizeof(float));
-    if (m & QGL__A_COLOR2)
-        memcpy(d->col2 + 3 * i, s->col2 + 3 * j, 3 * sizeof(float));
-    if (m & QGL__A_FOG)
-        d->fog[i] = s->fog[j];
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m & (1u << a)) {
+            size_t k = (size_t)qgl__attribs[a].floats;
+            memcpy(d->attr[a] + k * i, s->attr[a] + k * j, k * sizeof(float));
+        }
     if (m & QGL__A_EDGE)
         d->edge[i] = s->edge[j];
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (m & (QGL__A_TEX0 << u))
-            memcpy(d->tex[u] + 4 * i, s->tex[u] + 4 * j, 4 * sizeof(float));
     if (m & QGL__A_MATERIAL)
         memcpy(d->mat + QGL__MATERIAL_FLOATS * i, s->mat + QGL__MATERIAL_FLOATS * j,
                QGL__MATERIAL_FLOATS * sizeof(float));
@@ -266,13 +256,9 @@ void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
 void qgl__verts_free(qgl__verts *v)
 {
     free(v->pos);
-    free(v->col);
-    free(v->nrm);
-    free(v->col2);
-    free(v->fog);
+    for (int a = 0; a < QGL__NATTR; a++)
+        free(v->attr[a]);
     free(v->edge);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        free(v->tex[u]);
     free(v->mat);
     memset(v, 0, sizeof *v);
 }

@@ -158,19 +158,17 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
 /* Corner c's captured attributes, concatenated (positions excluded); returns the count. */
 static int corner_inputs(const qgl__verts *v, size_t i, float *out)
 {
-    struct { unsigned bit; const float *a; int n; } arrays[5 + QGL_MAX_TEXUNITS] = {
-        {QGL__A_COLOR, v->col, 4}, {QGL__A_NORMAL, v->nrm, 3}, {QGL__A_COLOR2, v->col2, 3},
-        {QGL__A_FOG, v->fog, 1}, {QGL__A_MATERIAL, v->mat, QGL__MATERIAL_FLOATS}};
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-        arrays[5 + u].bit = QGL__A_TEX0 << u;
-        arrays[5 + u].a = v->tex[u];
-        arrays[5 + u].n = 4;
-    }
     int k = 0;
-    for (size_t b = 0; b < sizeof arrays / sizeof arrays[0]; b++)
-        if (v->mask & arrays[b].bit)
-            for (int j = 0; j < arrays[b].n; j++)
-                out[k++] = arrays[b].a[(size_t)arrays[b].n * i + (size_t)j];
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (v->mask & (1u << a)) {
+            int n = qgl__attribs[a].floats;
+            memcpy(out + k, v->attr[a] + (size_t)n * i, (size_t)n * sizeof(float));
+            k += n;
+        }
+    if (v->mask & QGL__A_MATERIAL) {
+        memcpy(out + k, v->mat + QGL__MATERIAL_FLOATS * i, QGL__MATERIAL_FLOATS * sizeof(float));
+        k += QGL__MATERIAL_FLOATS;
+    }
     return k;
 }
 
@@ -574,36 +572,35 @@ QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale)
 typedef struct saved {
     GLint program, vao, vbo, client_tex;
     unsigned restore_current; /* attributes whose current value we must put back */
-    float col[4], nrm[4], col2[4], fog[4], tex[QGL_MAX_TEXUNITS][4];
+    float cur[QGL__NATTR][4];
     GLboolean edge;
 } saved;
 
-static void save(qgl_context *ctx, const qgl__state *st, unsigned mask, saved *s)
+/* The driver's current value of attribute a into out (4 floats, GL's defaults past its own). */
+static void read_current(qgl_context *ctx, const qgl__state *st, int a, float out[4])
 {
     struct qgl__gl *gl = &ctx->gl;
+    out[0] = out[1] = out[2] = 0, out[3] = 1;
+    int unit = qgl__attribs[a].unit;
+    if (unit >= 0)
+        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    gl->GetFloatv(qgl__attribs[a].current, out);
+    if (unit >= 0)
+        gl->ActiveTexture((GLenum)st->active_texture);
+}
+
+static void save(qgl_context *ctx, const qgl__state *st, unsigned mask, saved *s)
+{
     s->program = st->program;
     s->restore_current = mask;
-    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
-    gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->vbo);
-    gl->GetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &s->client_tex);
-    if (mask & QGL__A_COLOR)
-        gl->GetFloatv(GL_CURRENT_COLOR, s->col);
-    if (mask & QGL__A_NORMAL)
-        gl->GetFloatv(GL_CURRENT_NORMAL, s->nrm);
-    if (mask & QGL__A_COLOR2)
-        gl->GetFloatv(GL_CURRENT_SECONDARY_COLOR, s->col2);
-    if (mask & QGL__A_FOG)
-        gl->GetFloatv(GL_CURRENT_FOG_COORD, s->fog);
+    s->vao = st->vao;
+    s->vbo = st->array_buffer;
+    s->client_tex = st->client_texture;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (mask & (1u << a))
+            read_current(ctx, st, a, s->cur[a]);
     if (mask & QGL__A_EDGE)
-        gl->GetBooleanv(GL_EDGE_FLAG, &s->edge);
-    if (mask & (QGL__A_TEX0 * 15u)) {
-        for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-            if (mask & (QGL__A_TEX0 << u)) {
-                gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
-                gl->GetFloatv(GL_CURRENT_TEXTURE_COORDS, s->tex[u]);
-            }
-        gl->ActiveTexture((GLenum)st->active_texture);
-    }
+        ctx->gl.GetBooleanv(GL_EDGE_FLAG, &s->edge);
 }
 
 static void restore(qgl_context *ctx, const saved *s)
@@ -614,19 +611,11 @@ static void restore(qgl_context *ctx, const saved *s)
     gl->BindVertexArray((GLuint)s->vao);
     gl->BindBuffer(GL_ARRAY_BUFFER, (GLuint)s->vbo);
     gl->ClientActiveTexture((GLenum)s->client_tex);
-    if (m & QGL__A_COLOR)
-        gl->Color4fv(s->col);
-    if (m & QGL__A_NORMAL)
-        gl->Normal3fv(s->nrm);
-    if (m & QGL__A_COLOR2)
-        gl->SecondaryColor3fv(s->col2);
-    if (m & QGL__A_FOG)
-        gl->FogCoordf(s->fog[0]);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m & (1u << a))
+            qgl__set_current(gl, a, s->cur[a]);
     if (m & QGL__A_EDGE)
         gl->EdgeFlag(s->edge);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (m & (QGL__A_TEX0 << u))
-            gl->MultiTexCoord4fv(GL_TEXTURE0 + (GLenum)u, s->tex[u]);
 }
 
 /* Per-vertex materials (shader path only) as generic attributes of our VAO, at off. */
@@ -649,35 +638,34 @@ static void point_materials(qgl_context *ctx, const qgl__verts *v, size_t off)
     ctx->material_arrays = on;
 }
 
-/* Copy v into the stream buffer (one block per attribute, then the strip indices of nidx
- * quads) and point our VAO's arrays at it; 0 when the driver refused the buffer. */
+/* Copy v into the stream buffer (position, each attribute, edge flags, materials, then the
+ * strip indices of nidx quads) and point our VAO's arrays at it; 0 when the driver refused. */
 static int upload(qgl_context *ctx, const qgl__verts *v, size_t nidx)
 {
     struct qgl__gl *gl = &ctx->gl;
-    size_t n = v->n;
-    struct { unsigned bit; const void *data; size_t size; } blocks[7 + QGL_MAX_TEXUNITS] = {
-        {0, v->pos, 16}, {QGL__A_COLOR, v->col, 16}, {QGL__A_NORMAL, v->nrm, 12},
-        {QGL__A_COLOR2, v->col2, 12}, {QGL__A_FOG, v->fog, 4}, {QGL__A_EDGE, v->edge, 1},
-        {QGL__A_MATERIAL, v->mat, QGL__MATERIAL_FLOATS * sizeof(float)}};
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-        blocks[7 + u].bit = QGL__A_TEX0 << u;
-        blocks[7 + u].data = v->tex[u];
-        blocks[7 + u].size = 16;
-    }
-    size_t total = 16 * nidx, base = 0, off[7 + QGL_MAX_TEXUNITS];
-    for (size_t b = 0; b < sizeof blocks / sizeof blocks[0]; b++)
-        if (!blocks[b].bit || (v->mask & blocks[b].bit))
-            total += (n * blocks[b].size + 15) & ~(size_t)15;
+    size_t n = v->n, base = 0, at = 0, off[QGL__NATTR + 3];
+    const void *data[QGL__NATTR + 3];
+    size_t size[QGL__NATTR + 3];
+    unsigned bit[QGL__NATTR + 3];
+    for (int a = 0; a < QGL__NATTR; a++)
+        data[a] = v->attr[a], size[a] = 4 * (size_t)qgl__attribs[a].floats, bit[a] = 1u << a;
+    data[QGL__NATTR] = v->pos, size[QGL__NATTR] = 16, bit[QGL__NATTR] = 0;
+    data[QGL__NATTR + 1] = v->edge, size[QGL__NATTR + 1] = 1, bit[QGL__NATTR + 1] = QGL__A_EDGE;
+    data[QGL__NATTR + 2] = v->mat, size[QGL__NATTR + 2] = QGL__MATERIAL_FLOATS * sizeof(float);
+    bit[QGL__NATTR + 2] = QGL__A_MATERIAL;
+    size_t total = 16 * nidx;
+    for (int b = 0; b < QGL__NATTR + 3; b++)
+        if (!bit[b] || (v->mask & bit[b]))
+            total += (n * size[b] + 15) & ~(size_t)15;
     gl->BindVertexArray(ctx->vao);
     unsigned char *map = qgl__stream_begin(ctx, total, &base);
     if (!map)
         return 0;
-    size_t at = 0;
-    for (size_t b = 0; b < sizeof blocks / sizeof blocks[0]; b++) {
+    for (int b = 0; b < QGL__NATTR + 3; b++) {
         off[b] = base + at;
-        if (!blocks[b].bit || (v->mask & blocks[b].bit)) {
-            memcpy(map + at, blocks[b].data, n * blocks[b].size);
-            at += (n * blocks[b].size + 15) & ~(size_t)15;
+        if (!bit[b] || (v->mask & bit[b])) {
+            memcpy(map + at, data[b], n * size[b]);
+            at += (n * size[b] + 15) & ~(size_t)15;
         }
     }
     uint32_t *idx = (uint32_t *)(map + at);
@@ -688,30 +676,16 @@ static int upload(qgl_context *ctx, const qgl__verts *v, size_t nidx)
     qgl__stream_end(ctx);
     if (nidx)
         gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->stream.buf); /* our VAO's */
-    for (size_t b = 0; b < 6 + QGL_MAX_TEXUNITS; b++) {
-        size_t k = b < 6 ? b : b + 1; /* materials are generic attributes, below */
-        unsigned bit = blocks[k].bit;
-        int on = !bit || (v->mask & bit);
-        const void *p = (const void *)(uintptr_t)off[k];
-        GLenum array = 0;
-        switch (bit) {
-        case 0: gl->VertexPointer(4, GL_FLOAT, 0, p); array = GL_VERTEX_ARRAY; break;
-        case QGL__A_COLOR: gl->ColorPointer(4, GL_FLOAT, 0, p); array = GL_COLOR_ARRAY; break;
-        case QGL__A_NORMAL: gl->NormalPointer(GL_FLOAT, 0, p); array = GL_NORMAL_ARRAY; break;
-        case QGL__A_COLOR2: gl->SecondaryColorPointer(3, GL_FLOAT, 0, p); array = GL_SECONDARY_COLOR_ARRAY; break;
-        case QGL__A_FOG: gl->FogCoordPointer(GL_FLOAT, 0, p); array = GL_FOG_COORD_ARRAY; break;
-        case QGL__A_EDGE: gl->EdgeFlagPointer(0, p); array = GL_EDGE_FLAG_ARRAY; break;
-        default:
-            gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)(k - 7));
-            gl->TexCoordPointer(4, GL_FLOAT, 0, p);
-            array = GL_TEXTURE_COORD_ARRAY;
-        }
-        if (on)
-            gl->EnableClientState(array);
-        else
-            gl->DisableClientState(array);
-    }
-    point_materials(ctx, v, off[6]);
+    gl->VertexPointer(4, GL_FLOAT, 0, (const void *)(uintptr_t)off[QGL__NATTR]);
+    gl->EnableClientState(GL_VERTEX_ARRAY);
+    for (int a = 0; a < QGL__NATTR; a++)
+        qgl__attrib_array(gl, a, (v->mask >> a) & 1, (const void *)(uintptr_t)off[a]);
+    gl->EdgeFlagPointer(0, (const void *)(uintptr_t)off[QGL__NATTR + 1]);
+    if (v->mask & QGL__A_EDGE)
+        gl->EnableClientState(GL_EDGE_FLAG_ARRAY);
+    else
+        gl->DisableClientState(GL_EDGE_FLAG_ARRAY);
+    point_materials(ctx, v, off[QGL__NATTR + 2]);
     return 1;
 }
 
@@ -730,12 +704,13 @@ static void draw_split(qgl_context *ctx, qgl_topology topo, size_t q0, size_t nq
 /* The corner of a captured quad whose colour flat shading uses: the last vertex of the quad
  * (GL_QUADS 4k+3, corner 3; strip 2k+3, corner 2) unless quads follow a first-vertex
  * provoking convention. */
-int qgl__flat_corner(qgl_context *ctx, qgl_topology topo)
+int qgl__flat_corner(qgl_context *ctx, const qgl__state *st, qgl_topology topo)
 {
     if (ctx->quads_follow_pv) {
         GLint pv = GL_LAST_VERTEX_CONVENTION;
-        ctx->gl.GetIntegerv(GL_PROVOKING_VERTEX, &pv);
-        if (pv == GL_FIRST_VERTEX_CONVENTION)
+        if (!st)
+            ctx->gl.GetIntegerv(GL_PROVOKING_VERTEX, &pv);
+        if (st ? st->first_vertex_pv : pv == GL_FIRST_VERTEX_CONVENTION)
             return 0;
     }
     return topo == QGL_QUADS ? 3 : 2;
@@ -745,7 +720,7 @@ int qgl__flat_corner(qgl_context *ctx, qgl_topology topo)
 static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, unsigned char path)
 {
     unsigned key = QGL__K_COLOR | (st->simple ? 0 : QGL__K_EXTRA);
-    int corner = qgl__flat_corner(ctx, topo);
+    int corner = qgl__flat_corner(ctx, st, topo);
     if (st->shade_model == GL_FLAT)
         key |= QGL__K_FLAT | (unsigned)corner << QGL__K_CORNER_SHIFT;
     if (st->texture2d)
@@ -764,7 +739,7 @@ static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, u
     *k = st->ffp;
     if (st->shade_model == GL_FLAT) {
         k->flags |= QGL__KF_FLAT;
-        k->corner = (uint8_t)qgl__flat_corner(ctx, topo);
+        k->corner = (uint8_t)qgl__flat_corner(ctx, st, topo);
     }
     /* Unlit colours nobody gave per vertex are the current ones, equal at every corner: the
      * flat program passes one value instead of four and interpolates nothing. */
@@ -840,19 +815,11 @@ static void recount_as_subdiv(qgl_context *ctx, size_t nq)
 static void replay_vertex(struct qgl__gl *gl, const qgl__verts *v, size_t i)
 {
     unsigned m = v->mask;
-    if (m & QGL__A_COLOR)
-        gl->Color4fv(v->col + 4 * i);
-    if (m & QGL__A_NORMAL)
-        gl->Normal3fv(v->nrm + 3 * i);
-    if (m & QGL__A_COLOR2)
-        gl->SecondaryColor3fv(v->col2 + 3 * i);
-    if (m & QGL__A_FOG)
-        gl->FogCoordf(v->fog[i]);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m & (1u << a))
+            qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
     if (m & QGL__A_EDGE)
         gl->EdgeFlag(v->edge[i]);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (m & (QGL__A_TEX0 << u))
-            gl->MultiTexCoord4fv(GL_TEXTURE0 + (GLenum)u, v->tex[u] + 4 * i);
     gl->Vertex4fv(v->pos + 4 * i);
 }
 

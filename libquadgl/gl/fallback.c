@@ -194,7 +194,7 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
         for (int k = 0; k < 4; k++)
             clip[c][k] = ctx->clip[4 * idx[c] + k] * scale[k];
     }
-    int flat = st->shade_model == GL_FLAT ? qgl__flat_corner(ctx, topo) : -1;
+    int flat = st->shade_model == GL_FLAT ? qgl__flat_corner(ctx, st, topo) : -1;
     qgl_cover cov;
     int kind = qgl_classify_clip(clip, &cov);
     if (kind < 0 || kind == QGL_QUAD_EXTERNAL || kind == QGL_QUAD_DEGENERATE || cov.ntri == 0)

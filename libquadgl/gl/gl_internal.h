@@ -162,31 +162,69 @@ int qgl__gl_load(struct qgl__gl *gl, void *(*get_proc)(const char *));
 
 /* ---- captured vertices: one array per attribute (structure of arrays) ------------------- */
 
+/* The attributes a vertex carries besides its position, one row each: X(name, floats stored
+ * per vertex, the GL_CURRENT_* value, the client array). Everything that handles attributes
+ * one by one (capture, conversion, upload, replay, current values) walks this table; the
+ * texture units' rows differ only by unit. */
+#define QGL__ATTRIBS(X) \
+    X(COLOR, 4, GL_CURRENT_COLOR, GL_COLOR_ARRAY) \
+    X(NORMAL, 3, GL_CURRENT_NORMAL, GL_NORMAL_ARRAY) \
+    X(COLOR2, 3, GL_CURRENT_SECONDARY_COLOR, GL_SECONDARY_COLOR_ARRAY) \
+    X(FOG, 1, GL_CURRENT_FOG_COORD, GL_FOG_COORD_ARRAY) \
+    X(TEX0, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
+    X(TEX1, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
+    X(TEX2, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
+    X(TEX3, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY)
+
+#define QGL__AT_ENUM(name, floats, current, array) QGL__AT_##name,
+enum { QGL__ATTRIBS(QGL__AT_ENUM) QGL__NATTR };
+#undef QGL__AT_ENUM
+
+typedef struct qgl__attrib_info {
+    int floats;
+    GLenum current, array;
+    int unit;                 /* texture unit, -1 for the others */
+} qgl__attrib_info;
+extern const qgl__attrib_info qgl__attribs[QGL__NATTR];
+
+/* Attribute bits: bit a is row a of QGL__ATTRIBS; edge flags and materials follow. */
 enum {
-    QGL__A_COLOR = 1 << 0,
-    QGL__A_NORMAL = 1 << 1,
-    QGL__A_COLOR2 = 1 << 2,
-    QGL__A_FOG = 1 << 3,
-    QGL__A_EDGE = 1 << 4,
-    QGL__A_TEX0 = 1 << 5 /* unit u is QGL__A_TEX0 << u */
+    QGL__A_COLOR = 1 << QGL__AT_COLOR,
+    QGL__A_NORMAL = 1 << QGL__AT_NORMAL,
+    QGL__A_COLOR2 = 1 << QGL__AT_COLOR2,
+    QGL__A_FOG = 1 << QGL__AT_FOG,
+    QGL__A_TEX0 = 1 << QGL__AT_TEX0, /* unit u is QGL__A_TEX0 << u */
+    QGL__A_ATTRIBS = (1 << QGL__NATTR) - 1,
+    QGL__A_EDGE = 1 << QGL__NATTR,
+    QGL__A_MATERIAL = 1 << (QGL__NATTR + 1)
 };
 /* Materials given per vertex inside qglBegin/qglEnd: QGL__MATERIAL_FLOATS per vertex, the
  * vec4s front ambient, diffuse, specular, emission, back the same, then the shininesses. */
-enum { QGL__A_MATERIAL = QGL__A_TEX0 << QGL_MAX_TEXUNITS, QGL__MATERIAL_FLOATS = 36 };
+enum { QGL__MATERIAL_FLOATS = 36 };
 
 typedef struct qgl__verts {
     size_t n, cap;
     unsigned mask;            /* attributes present (QGL__A_*) */
     unsigned alloc;           /* arrays allocated */
     float *pos;               /* 4 per vertex, object coordinates */
-    float *col;               /* 4 */
-    float *nrm;               /* 3 */
-    float *col2;              /* 3 */
-    float *fog;               /* 1 */
+    union {
+        struct {
+            float *col;       /* 4 */
+            float *nrm;       /* 3 */
+            float *col2;      /* 3 */
+            float *fog;       /* 1 */
+            float *tex[QGL_MAX_TEXUNITS]; /* 4 */
+        };
+        float *attr[QGL__NATTR]; /* the same arrays by row of QGL__ATTRIBS */
+    };
     unsigned char *edge;      /* 1 */
-    float *tex[QGL_MAX_TEXUNITS]; /* 4 */
     float *mat;               /* QGL__MATERIAL_FLOATS */
 } qgl__verts;
+
+/* The driver's current value of attribute a is set to v (qgl__attribs[a].floats of them). */
+void qgl__set_current(struct qgl__gl *gl, int a, const float *v);
+/* Client array of attribute a: enabled or not, from ptr (floats, tightly packed). */
+void qgl__attrib_array(struct qgl__gl *gl, int a, int on, const void *ptr);
 
 int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned mask);
 void qgl__verts_free(qgl__verts *v);
@@ -253,8 +291,23 @@ enum { QGL__LOC_MATERIAL = 6, QGL__NMATERIAL = 9 };
 
 /* ---- GL state the paths need, queried at each draw --------------------------------------- */
 
+/* Groups of the state, re-read only when marked changed by an owner that sees every GL call
+ * (qgl__state_track); otherwise every draw reads all of it. */
+enum {
+    QGL__D_XFORM = 1 << 0,  /* matrices, viewport */
+    QGL__D_RASTER = 1 << 1, /* render and polygon modes, program, shade model, active texture unit,
+                               polygon offset, vertex colour clamping, provoking vertex */
+    QGL__D_FFP = 1 << 2,    /* the fixed-function key: textures, lighting, fog, clip planes, ... */
+    QGL__D_BIND = 1 << 3,   /* vertex array and array buffer bindings, client active texture */
+    QGL__D_ALL = (1 << 4) - 1
+};
+
 typedef struct qgl__state {
     GLint program, render_mode, polygon_mode[2], shade_model, viewport[4], active_texture;
+    GLint vao, array_buffer, client_texture; /* bindings a draw puts back */
+    int clamp;                /* GL_CLAMP_VERTEX_COLOR */
+    int first_vertex_pv;      /* GL_FIRST_VERTEX_CONVENTION, and quads follow it */
+    int ffp_ok;               /* the key describes the state (the programs can reproduce it) */
     double mvp[16];           /* projection * modelview, column-major */
     double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
@@ -323,7 +376,7 @@ struct qgl_context {
     GLenum mode;
     qgl__verts cap;
     unsigned given;           /* attributes given since qglBegin */
-    float cur_col[4], cur_nrm[3], cur_col2[3], cur_fog, cur_tex[QGL_MAX_TEXUNITS][4];
+    float cur[QGL__NATTR][4]; /* the values the next vertex takes, by attribute */
     unsigned char cur_edge;
     float cur_mat[QGL__MATERIAL_FLOATS];
 
@@ -345,6 +398,9 @@ struct qgl_context {
     } programs[QGL__MAX_PROGRAMS];
     int nprograms, next_evict; /* cache (failures too, so a bad key is compiled once) */
     int material_arrays;      /* our VAO's material attribute arrays are enabled */
+    qgl__state state;         /* the state of the last draw (state.c) */
+    unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
+    int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
     struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
     struct qgl__client_arrays *arrays; /* immediate.c: client arrays qglArrayElement reads */
     int exclusive;            /* desc.assume_exclusive: primitives may wait in pend */
@@ -387,10 +443,14 @@ int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
 int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts);
 uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
+/* state.c: the owner will mark every change of the groups from now on; a group changed. */
+void qgl__state_track(qgl_context *ctx);
+void qgl__state_dirty(qgl_context *ctx, unsigned groups);
 /* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */
 size_t qgl__nquads(qgl_topology topo, size_t n);
 size_t qgl__corner(qgl_topology topo, size_t q, int c);
-int qgl__flat_corner(qgl_context *ctx, qgl_topology topo);
+/* The corner flat shading takes its colour from; st the draw's state, or NULL to ask the driver. */
+int qgl__flat_corner(qgl_context *ctx, const qgl__state *st, qgl_topology topo);
 
 /* shader.c: the program for a key (NULL: plain smooth colour), built on first use; 0 when
  * it cannot be built (a warning is logged once). */

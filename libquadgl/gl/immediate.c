@@ -24,34 +24,27 @@ enum { OUTSIDE = 0, CAPTURE = 1, FORWARD = 2 };
     if (!c) \
         return
 
-/* The driver's current value of one attribute, for back-filling. */
+/* The driver's current value of one attribute (QGL__A_* bit), for back-filling. */
 void qgl__driver_current(qgl_context *c, unsigned bit, float out[4])
 {
     struct qgl__gl *gl = &c->gl;
     out[0] = out[1] = out[2] = 0;
     out[3] = 1;
-    if (bit == QGL__A_COLOR) {
-        gl->GetFloatv(GL_CURRENT_COLOR, out);
-    } else if (bit == QGL__A_NORMAL) {
-        gl->GetFloatv(GL_CURRENT_NORMAL, out);
-    } else if (bit == QGL__A_COLOR2) {
-        gl->GetFloatv(GL_CURRENT_SECONDARY_COLOR, out);
-    } else if (bit == QGL__A_FOG) {
-        gl->GetFloatv(GL_CURRENT_FOG_COORD, out);
-    } else if (bit == QGL__A_EDGE) {
+    if (bit == QGL__A_EDGE) {
         GLboolean e = GL_TRUE;
         gl->GetBooleanv(GL_EDGE_FLAG, &e);
         out[0] = e;
-    } else {
-        int unit = 0;
-        while ((unsigned)(QGL__A_TEX0 << unit) != bit)
-            unit++;
-        GLint active = GL_TEXTURE0;
-        gl->GetIntegerv(GL_ACTIVE_TEXTURE, &active);
-        gl->ActiveTexture(GL_TEXTURE0 + unit);
-        gl->GetFloatv(GL_CURRENT_TEXTURE_COORDS, out);
-        gl->ActiveTexture((GLenum)active);
+        return;
     }
+    int a = __builtin_ctz(bit), unit = qgl__attribs[a].unit;
+    GLint active = GL_TEXTURE0;
+    if (unit >= 0) {
+        gl->GetIntegerv(GL_ACTIVE_TEXTURE, &active);
+        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    }
+    gl->GetFloatv(qgl__attribs[a].current, out);
+    if (unit >= 0)
+        gl->ActiveTexture((GLenum)active);
 }
 
 /* An attribute given for the first time in this capture: allocate and back-fill it. */
@@ -62,19 +55,12 @@ static int join(qgl_context *c, unsigned bit)
         return 0;
     float cur[4];
     qgl__driver_current(c, bit, cur);
-    for (size_t i = 0; i < v->n; i++) {
-        switch (bit) {
-        case QGL__A_COLOR: for (int k = 0; k < 4; k++) v->col[4 * i + k] = cur[k]; break;
-        case QGL__A_NORMAL: for (int k = 0; k < 3; k++) v->nrm[3 * i + k] = cur[k]; break;
-        case QGL__A_COLOR2: for (int k = 0; k < 3; k++) v->col2[3 * i + k] = cur[k]; break;
-        case QGL__A_FOG: v->fog[i] = cur[0]; break;
-        case QGL__A_EDGE: v->edge[i] = cur[0] != 0; break;
-        default:
-            for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-                if (bit == (unsigned)(QGL__A_TEX0 << u))
-                    for (int k = 0; k < 4; k++)
-                        v->tex[u][4 * i + k] = cur[k];
-        }
+    if (bit == QGL__A_EDGE) {
+        memset(v->edge, cur[0] != 0, v->n);
+    } else {
+        int a = __builtin_ctz(bit), k = qgl__attribs[a].floats;
+        for (size_t i = 0; i < v->n; i++)
+            memcpy(v->attr[a] + (size_t)k * i, cur, (size_t)k * sizeof(float));
     }
     c->given |= bit;
     return 1;
@@ -82,28 +68,13 @@ static int join(qgl_context *c, unsigned bit)
 
 static void copy_attribs(qgl_context *c, qgl__verts *v, size_t i, unsigned g)
 {
-    if (g & QGL__A_COLOR) {
-        float *d = v->col + 4 * i;
-        d[0] = c->cur_col[0], d[1] = c->cur_col[1], d[2] = c->cur_col[2], d[3] = c->cur_col[3];
-    }
-    if (g & QGL__A_NORMAL) {
-        float *d = v->nrm + 3 * i;
-        d[0] = c->cur_nrm[0], d[1] = c->cur_nrm[1], d[2] = c->cur_nrm[2];
-    }
-    if (g & QGL__A_COLOR2) {
-        float *d = v->col2 + 3 * i;
-        d[0] = c->cur_col2[0], d[1] = c->cur_col2[1], d[2] = c->cur_col2[2];
-    }
-    if (g & QGL__A_FOG)
-        v->fog[i] = c->cur_fog;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (g & (1u << a)) {
+            int k = qgl__attribs[a].floats;
+            memcpy(v->attr[a] + (size_t)k * i, c->cur[a], (size_t)k * sizeof(float));
+        }
     if (g & QGL__A_EDGE)
         v->edge[i] = c->cur_edge;
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (g & (QGL__A_TEX0 << u)) {
-            float *d = v->tex[u] + 4 * i;
-            const float *s = c->cur_tex[u];
-            d[0] = s[0], d[1] = s[1], d[2] = s[2], d[3] = s[3];
-        }
     if (g & QGL__A_MATERIAL)
         memcpy(v->mat + QGL__MATERIAL_FLOATS * i, c->cur_mat, sizeof c->cur_mat);
 }
@@ -176,21 +147,11 @@ QGL_API void qglBegin(unsigned mode)
 /* The driver's current attributes become the last ones given, as after a native glEnd. */
 static void set_current(qgl_context *c)
 {
-    struct qgl__gl *gl = &c->gl;
-    unsigned g = c->given;
-    if (g & QGL__A_COLOR)
-        gl->Color4fv(c->cur_col);
-    if (g & QGL__A_NORMAL)
-        gl->Normal3fv(c->cur_nrm);
-    if (g & QGL__A_COLOR2)
-        gl->SecondaryColor3fv(c->cur_col2);
-    if (g & QGL__A_FOG)
-        gl->FogCoordf(c->cur_fog);
-    if (g & QGL__A_EDGE)
-        gl->EdgeFlag(c->cur_edge);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (g & (QGL__A_TEX0 << u))
-            gl->MultiTexCoord4fv(GL_TEXTURE0 + u, c->cur_tex[u]);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (c->given & (1u << a))
+            qgl__set_current(&c->gl, a, c->cur[a]);
+    if (c->given & QGL__A_EDGE)
+        c->gl.EdgeFlag(c->cur_edge);
 }
 
 QGL_API void qglEnd(void)
@@ -266,30 +227,30 @@ static void set4(float *d, float a, float b, float c, float e)
     d[0] = a, d[1] = b, d[2] = c, d[3] = e;
 }
 
-QGL_API void qglColor3f(float r, float g, float b) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, r, g, b, 1), c->gl.Color3f(r, g, b)); }
-QGL_API void qglColor3d(double r, double g, double b) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, (float)r, (float)g, (float)b, 1), c->gl.Color3d(r, g, b)); }
-QGL_API void qglColor3ub(unsigned char r, unsigned char g, unsigned char b) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, UB(r), UB(g), UB(b), 1), c->gl.Color3ub(r, g, b)); }
-QGL_API void qglColor4f(float r, float g, float b, float a) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, r, g, b, a), c->gl.Color4f(r, g, b, a)); }
-QGL_API void qglColor4d(double r, double g, double b, double a) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, (float)r, (float)g, (float)b, (float)a), c->gl.Color4d(r, g, b, a)); }
-QGL_API void qglColor4ub(unsigned char r, unsigned char g, unsigned char b, unsigned char a) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, UB(r), UB(g), UB(b), UB(a)), c->gl.Color4ub(r, g, b, a)); }
-QGL_API void qglColor3fv(const float *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, v[0], v[1], v[2], 1), c->gl.Color3fv(v)); }
-QGL_API void qglColor3dv(const double *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, (float)v[0], (float)v[1], (float)v[2], 1), c->gl.Color3dv(v)); }
-QGL_API void qglColor3ubv(const unsigned char *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, UB(v[0]), UB(v[1]), UB(v[2]), 1), c->gl.Color3ubv(v)); }
-QGL_API void qglColor4fv(const float *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, v[0], v[1], v[2], v[3]), c->gl.Color4fv(v)); }
-QGL_API void qglColor4dv(const double *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, (float)v[0], (float)v[1], (float)v[2], (float)v[3]), c->gl.Color4dv(v)); }
-QGL_API void qglColor4ubv(const unsigned char *v) { ATTRIB(QGL__A_COLOR, set4(c->cur_col, UB(v[0]), UB(v[1]), UB(v[2]), UB(v[3])), c->gl.Color4ubv(v)); }
+QGL_API void qglColor3f(float r, float g, float b) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], r, g, b, 1), c->gl.Color3f(r, g, b)); }
+QGL_API void qglColor3d(double r, double g, double b) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], (float)r, (float)g, (float)b, 1), c->gl.Color3d(r, g, b)); }
+QGL_API void qglColor3ub(unsigned char r, unsigned char g, unsigned char b) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], UB(r), UB(g), UB(b), 1), c->gl.Color3ub(r, g, b)); }
+QGL_API void qglColor4f(float r, float g, float b, float a) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], r, g, b, a), c->gl.Color4f(r, g, b, a)); }
+QGL_API void qglColor4d(double r, double g, double b, double a) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], (float)r, (float)g, (float)b, (float)a), c->gl.Color4d(r, g, b, a)); }
+QGL_API void qglColor4ub(unsigned char r, unsigned char g, unsigned char b, unsigned char a) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], UB(r), UB(g), UB(b), UB(a)), c->gl.Color4ub(r, g, b, a)); }
+QGL_API void qglColor3fv(const float *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], v[0], v[1], v[2], 1), c->gl.Color3fv(v)); }
+QGL_API void qglColor3dv(const double *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], (float)v[0], (float)v[1], (float)v[2], 1), c->gl.Color3dv(v)); }
+QGL_API void qglColor3ubv(const unsigned char *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], UB(v[0]), UB(v[1]), UB(v[2]), 1), c->gl.Color3ubv(v)); }
+QGL_API void qglColor4fv(const float *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], v[0], v[1], v[2], v[3]), c->gl.Color4fv(v)); }
+QGL_API void qglColor4dv(const double *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], (float)v[0], (float)v[1], (float)v[2], (float)v[3]), c->gl.Color4dv(v)); }
+QGL_API void qglColor4ubv(const unsigned char *v) { ATTRIB(QGL__A_COLOR, set4(c->cur[QGL__AT_COLOR], UB(v[0]), UB(v[1]), UB(v[2]), UB(v[3])), c->gl.Color4ubv(v)); }
 
 static void set3(float *d, float a, float b, float e)
 {
     d[0] = a, d[1] = b, d[2] = e;
 }
 
-QGL_API void qglNormal3f(float x, float y, float z) { ATTRIB(QGL__A_NORMAL, set3(c->cur_nrm, x, y, z), c->gl.Normal3f(x, y, z)); }
-QGL_API void qglNormal3d(double x, double y, double z) { ATTRIB(QGL__A_NORMAL, set3(c->cur_nrm, (float)x, (float)y, (float)z), c->gl.Normal3d(x, y, z)); }
-QGL_API void qglNormal3fv(const float *v) { ATTRIB(QGL__A_NORMAL, set3(c->cur_nrm, v[0], v[1], v[2]), c->gl.Normal3fv(v)); }
-QGL_API void qglNormal3dv(const double *v) { ATTRIB(QGL__A_NORMAL, set3(c->cur_nrm, (float)v[0], (float)v[1], (float)v[2]), c->gl.Normal3dv(v)); }
+QGL_API void qglNormal3f(float x, float y, float z) { ATTRIB(QGL__A_NORMAL, set3(c->cur[QGL__AT_NORMAL], x, y, z), c->gl.Normal3f(x, y, z)); }
+QGL_API void qglNormal3d(double x, double y, double z) { ATTRIB(QGL__A_NORMAL, set3(c->cur[QGL__AT_NORMAL], (float)x, (float)y, (float)z), c->gl.Normal3d(x, y, z)); }
+QGL_API void qglNormal3fv(const float *v) { ATTRIB(QGL__A_NORMAL, set3(c->cur[QGL__AT_NORMAL], v[0], v[1], v[2]), c->gl.Normal3fv(v)); }
+QGL_API void qglNormal3dv(const double *v) { ATTRIB(QGL__A_NORMAL, set3(c->cur[QGL__AT_NORMAL], (float)v[0], (float)v[1], (float)v[2]), c->gl.Normal3dv(v)); }
 
-#define T0 (c->cur_tex[0])
+#define T0 (c->cur[QGL__AT_TEX0])
 QGL_API void qglTexCoord1f(float s) { ATTRIB(QGL__A_TEX0, set4(T0, s, 0, 0, 1), c->gl.TexCoord1f(s)); }
 QGL_API void qglTexCoord2f(float s, float t) { ATTRIB(QGL__A_TEX0, set4(T0, s, t, 0, 1), c->gl.TexCoord2f(s, t)); }
 QGL_API void qglTexCoord3f(float s, float t, float r) { ATTRIB(QGL__A_TEX0, set4(T0, s, t, r, 1), c->gl.TexCoord3f(s, t, r)); }
@@ -324,15 +285,15 @@ static int unit_of(unsigned target)
         forward; \
     }
 
-QGL_API void qglMultiTexCoord2f(unsigned t, float s, float tt) { MULTI(t, set4(c->cur_tex[u], s, tt, 0, 1), c->gl.MultiTexCoord2f(t, s, tt)); }
-QGL_API void qglMultiTexCoord4f(unsigned t, float s, float tt, float r, float q) { MULTI(t, set4(c->cur_tex[u], s, tt, r, q), c->gl.MultiTexCoord4f(t, s, tt, r, q)); }
-QGL_API void qglMultiTexCoord2fv(unsigned t, const float *v) { MULTI(t, set4(c->cur_tex[u], v[0], v[1], 0, 1), c->gl.MultiTexCoord2fv(t, v)); }
-QGL_API void qglMultiTexCoord4fv(unsigned t, const float *v) { MULTI(t, set4(c->cur_tex[u], v[0], v[1], v[2], v[3]), c->gl.MultiTexCoord4fv(t, v)); }
+QGL_API void qglMultiTexCoord2f(unsigned t, float s, float tt) { MULTI(t, set4(c->cur[QGL__AT_TEX0 + u], s, tt, 0, 1), c->gl.MultiTexCoord2f(t, s, tt)); }
+QGL_API void qglMultiTexCoord4f(unsigned t, float s, float tt, float r, float q) { MULTI(t, set4(c->cur[QGL__AT_TEX0 + u], s, tt, r, q), c->gl.MultiTexCoord4f(t, s, tt, r, q)); }
+QGL_API void qglMultiTexCoord2fv(unsigned t, const float *v) { MULTI(t, set4(c->cur[QGL__AT_TEX0 + u], v[0], v[1], 0, 1), c->gl.MultiTexCoord2fv(t, v)); }
+QGL_API void qglMultiTexCoord4fv(unsigned t, const float *v) { MULTI(t, set4(c->cur[QGL__AT_TEX0 + u], v[0], v[1], v[2], v[3]), c->gl.MultiTexCoord4fv(t, v)); }
 
-QGL_API void qglSecondaryColor3f(float r, float g, float b) { ATTRIB(QGL__A_COLOR2, set3(c->cur_col2, r, g, b), c->gl.SecondaryColor3f(r, g, b)); }
-QGL_API void qglSecondaryColor3fv(const float *v) { ATTRIB(QGL__A_COLOR2, set3(c->cur_col2, v[0], v[1], v[2]), c->gl.SecondaryColor3fv(v)); }
-QGL_API void qglFogCoordf(float f) { ATTRIB(QGL__A_FOG, c->cur_fog = f, c->gl.FogCoordf(f)); }
-QGL_API void qglFogCoordfv(const float *f) { ATTRIB(QGL__A_FOG, c->cur_fog = f[0], c->gl.FogCoordfv(f)); }
+QGL_API void qglSecondaryColor3f(float r, float g, float b) { ATTRIB(QGL__A_COLOR2, set3(c->cur[QGL__AT_COLOR2], r, g, b), c->gl.SecondaryColor3f(r, g, b)); }
+QGL_API void qglSecondaryColor3fv(const float *v) { ATTRIB(QGL__A_COLOR2, set3(c->cur[QGL__AT_COLOR2], v[0], v[1], v[2]), c->gl.SecondaryColor3fv(v)); }
+QGL_API void qglFogCoordf(float f) { ATTRIB(QGL__A_FOG, c->cur[QGL__AT_FOG][0] = f, c->gl.FogCoordf(f)); }
+QGL_API void qglFogCoordfv(const float *f) { ATTRIB(QGL__A_FOG, c->cur[QGL__AT_FOG][0] = f[0], c->gl.FogCoordfv(f)); }
 QGL_API void qglEdgeFlag(unsigned char flag) { ATTRIB(QGL__A_EDGE, c->cur_edge = flag != 0, c->gl.EdgeFlag(flag)); }
 QGL_API void qglEdgeFlagv(const unsigned char *flag) { ATTRIB(QGL__A_EDGE, c->cur_edge = flag[0] != 0, c->gl.EdgeFlagv(flag)); }
 

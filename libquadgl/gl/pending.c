@@ -24,21 +24,14 @@
 /* Attribute bit of v at vertex i to the value val (the layout of the qgl__verts arrays). */
 static void set_attr(qgl__verts *v, size_t i, unsigned bit, const float val[4])
 {
-    switch (bit) {
-    case QGL__A_COLOR: memcpy(v->col + 4 * i, val, 4 * sizeof(float)); break;
-    case QGL__A_NORMAL: memcpy(v->nrm + 3 * i, val, 3 * sizeof(float)); break;
-    case QGL__A_COLOR2: memcpy(v->col2 + 3 * i, val, 3 * sizeof(float)); break;
-    case QGL__A_FOG: v->fog[i] = val[0]; break;
-    default:
-        for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-            if (bit == (unsigned)QGL__A_TEX0 << u)
-                memcpy(v->tex[u] + 4 * i, val, 4 * sizeof(float));
-    }
+    int a = __builtin_ctz(bit), k = qgl__attribs[a].floats;
+    memcpy(v->attr[a] + (size_t)k * i, val, (size_t)k * sizeof(float));
 }
 
 /* Vertices [from, to) of v get the driver's current value of every attribute in bits. */
 static void fill_current(qgl_context *ctx, qgl__verts *v, size_t from, size_t to, unsigned bits)
 {
+    bits &= QGL__A_ATTRIBS;
     for (unsigned bit = 1; bits; bit <<= 1) {
         if (!(bits & bit))
             continue;
@@ -61,7 +54,7 @@ static int append(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size
     if (!qgl__verts_reserve(p, n0 + 4 * nq, p->mask | v->mask))
         return 0;
     fill_current(ctx, p, 0, n0, v->mask & ~p->mask & ~(unsigned)QGL__A_EDGE);
-    int shift = topo == QGL_QUAD_STRIP && qgl__flat_corner(ctx, topo) == 2 ? 3 : 0;
+    int shift = topo == QGL_QUAD_STRIP && qgl__flat_corner(ctx, NULL, topo) == 2 ? 3 : 0;
     for (size_t q = 0; q < nq; q++)
         for (int c = 0; c < 4; c++)
             qgl__verts_copy(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));

@@ -195,7 +195,6 @@ static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qg
     } else if (!base_format(ctx, target, &uk->format)) {
         return 0;
     }
-    gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
     texture_size(ctx, target, st->texsize[u]);
     return query_texgen(ctx, uk);
 }
@@ -387,33 +386,114 @@ static int query_ffp(qgl_context *ctx, qgl__state *st)
     return ok;
 }
 
-void qgl__query_state(qgl_context *ctx, qgl__state *st)
+/* ---- the groups, read when the owner says they changed ---------------------------------------- */
+
+static void query_raster(qgl_context *ctx, qgl__state *st)
 {
     struct qgl__gl *gl = &ctx->gl;
-    double mv[16], pr[16];
-    memset(st, 0, sizeof *st);
     gl->GetIntegerv(GL_RENDER_MODE, &st->render_mode);
     gl->GetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
+    st->program = 0;
     if (ctx->version >= 20)
         gl->GetIntegerv(GL_CURRENT_PROGRAM, &st->program);
     gl->GetIntegerv(GL_SHADE_MODEL, &st->shade_model);
-    gl->GetIntegerv(GL_VIEWPORT, st->viewport);
     gl->GetIntegerv(GL_ACTIVE_TEXTURE, &st->active_texture);
+    st->polygon_offset = gl->IsEnabled(GL_POLYGON_OFFSET_FILL);
+    GLboolean clamp = GL_TRUE;
+    if (ctx->shader_level && ctx->version >= 30) /* GL 3.0 state; GL 2.x always clamps */
+        gl->GetBooleanv(GL_CLAMP_VERTEX_COLOR, &clamp);
+    st->clamp = clamp;
+    GLint pv = GL_LAST_VERTEX_CONVENTION;
+    if (ctx->quads_follow_pv)
+        gl->GetIntegerv(GL_PROVOKING_VERTEX, &pv);
+    st->first_vertex_pv = pv == GL_FIRST_VERTEX_CONVENTION;
+}
+
+static void query_ffp_group(qgl_context *ctx, qgl__state *st)
+{
+    memset(&st->ffp, 0, sizeof st->ffp);
+    memset(st->texsize, 0, sizeof st->texsize);
+    st->fog_slope = 0;
+    st->ffp_ok = query_ffp(ctx, st);
+}
+
+/* Matrices (texture matrices of the units the key enables) and the viewport. */
+static void query_xform(qgl_context *ctx, qgl__state *st)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    double mv[16], pr[16];
+    gl->GetIntegerv(GL_VIEWPORT, st->viewport);
     gl->GetDoublev(GL_MODELVIEW_MATRIX, mv);
     gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
     mat_mul(pr, mv, st->mvp);
-    st->polygon_offset = gl->IsEnabled(GL_POLYGON_OFFSET_FILL);
-    int ffp = query_ffp(ctx, st);
+    int switched = 0;
+    for (int u = 0; u < st->ffp.nunits; u++) {
+        if (!st->ffp.unit[u].target)
+            continue;
+        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
+        switched = 1;
+    }
+    if (switched)
+        gl->ActiveTexture((GLenum)st->active_texture);
+}
+
+static void query_bind(qgl_context *ctx, qgl__state *st)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    st->vao = st->array_buffer = 0;
+    st->client_texture = GL_TEXTURE0;
+    if (!ctx->has_vao)
+        return;
+    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
+    gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
+    gl->GetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &st->client_texture);
+}
+
+/* What the planner concludes from the groups. */
+static void derive(qgl_context *ctx, qgl__state *st)
+{
     const qgl__unit_key *u0 = &st->ffp.unit[0];
     st->texture2d = u0->target == QGL__T_2D;
     st->tex_replace = u0->env == QGL__E_REPLACE;
     st->tex_no_alpha = u0->format == QGL__F_RGB;
     st->simple = simple(&st->ffp);
-    GLboolean clamp = GL_TRUE;
-    if (ctx->shader_level && ctx->version >= 30) /* GL 3.0 state; GL 2.x always clamps */
-        gl->GetBooleanv(GL_CLAMP_VERTEX_COLOR, &clamp);
-    st->modelled = ctx->shader_level && ffp && st->program == 0 && clamp &&
+    st->modelled = ctx->shader_level && st->ffp_ok && st->program == 0 && st->clamp &&
                    (ctx->shader_level == 150 || st->simple);
-    st->nonaffine = st->program != 0 || !ffp || nonaffine(st); /* unknown work: assume the worst */
-    st->lit_by_inputs = st->program == 0 && ffp && lit_by_inputs(st);
+    st->nonaffine = st->program != 0 || !st->ffp_ok || nonaffine(st); /* unknown work: assume the worst */
+    st->lit_by_inputs = st->program == 0 && st->ffp_ok && lit_by_inputs(st);
+    st->pv_material = 0;
+}
+
+void qgl__state_track(qgl_context *ctx)
+{
+    ctx->state_tracked = 1;
+    ctx->state_valid = 0;
+}
+
+void qgl__state_dirty(qgl_context *ctx, unsigned groups)
+{
+    ctx->state_valid &= ~groups;
+}
+
+/* The state of this draw into st: read in full, or (an owner that marks changes) only the
+ * groups changed since the last draw; the rest is the copy kept from then. */
+void qgl__query_state(qgl_context *ctx, qgl__state *st)
+{
+    qgl__state *c = &ctx->state;
+    unsigned need = ctx->state_tracked ? ~ctx->state_valid & QGL__D_ALL : QGL__D_ALL;
+    if (need & QGL__D_FFP)
+        need |= QGL__D_XFORM; /* texture matrices of newly enabled units */
+    if (need & QGL__D_RASTER)
+        query_raster(ctx, c);
+    if (need & QGL__D_FFP)
+        query_ffp_group(ctx, c);
+    if (need & QGL__D_XFORM)
+        query_xform(ctx, c);
+    if (need & QGL__D_BIND)
+        query_bind(ctx, c);
+    if (need)
+        derive(ctx, c);
+    ctx->state_valid = QGL__D_ALL;
+    *st = *c;
 }
