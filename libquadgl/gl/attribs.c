@@ -5,8 +5,8 @@
  * entry point: setting the driver's current value and pointing a client array at it. */
 #include "gl_internal.h"
 
-#define QGL__AT_ROW(name, floats, current, array) \
-    {floats, current, array, QGL__AT_##name >= QGL__AT_TEX0 ? QGL__AT_##name - QGL__AT_TEX0 : -1},
+#define QGL__AT_ROW(name, floats, current, array, normalized) \
+    {floats, current, array, normalized, QGL__AT_##name >= QGL__AT_TEX0 ? QGL__AT_##name - QGL__AT_TEX0 : -1},
 const qgl__attrib_info qgl__attribs[QGL__NATTR] = {QGL__ATTRIBS(QGL__AT_ROW)};
 #undef QGL__AT_ROW
 

@@ -823,11 +823,24 @@ static void replay_vertex(struct qgl__gl *gl, const qgl__verts *v, size_t i)
     gl->Vertex4fv(v->pos + 4 * i);
 }
 
+/* The batch's glMaterial changes due before vertex `before` (inside glBegin/glEnd they are
+ * legal and per vertex, as the application gave them). */
+static void apply_changes(qgl_context *ctx, size_t before)
+{
+    for (; ctx->chg_next < ctx->nchg && ctx->chg[ctx->chg_next].vertex < before; ctx->chg_next++) {
+        const qgl__change *m = &ctx->chg[ctx->chg_next];
+        ctx->gl.Materialfv(m->face, m->pname, m->v);
+    }
+}
+
 static void replay(qgl_context *ctx, GLenum mode, const qgl__verts *v, size_t first, size_t n)
 {
     ctx->gl.Begin(mode);
-    for (size_t i = first; i < first + n; i++)
+    for (size_t i = first; i < first + n; i++) {
+        if (ctx->chg_next < ctx->nchg && v == ctx->chg_verts)
+            apply_changes(ctx, i + 1);
         replay_vertex(&ctx->gl, v, i);
+    }
     ctx->gl.End();
     ctx->stats.draws++;
 }
@@ -905,8 +918,8 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     if (!ensure((void **)&ctx->path, &ctx->path_cap, nq, 1))
         return 0;
     int pass = st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL;
-    if (pass) {
-        memset(ctx->path, QGL__P_PASS, nq);
+    if (pass || ctx->method == QGL_METHOD_SPLIT) {
+        memset(ctx->path, pass ? QGL__P_PASS : QGL__P_SPLIT, nq);
         return 1;
     }
     if (!ensure((void **)&ctx->clip, &ctx->clip_cap, 4 * v->n, sizeof(double)))
@@ -946,14 +959,40 @@ static int draw_natively(qgl_context *ctx, const qgl__state *st, const qgl__fact
 
 int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo)
 {
-    return qgl__draw_with_facts(ctx, v, topo, NULL);
+    return qgl__draw_batch(ctx, v, topo, NULL, 0, NULL, 0);
 }
 
 int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts)
 {
+    return qgl__draw_batch(ctx, v, topo, facts, 0, NULL, 0);
+}
+
+/* The quad a material change before vertex i applies from (a quad drawn by the GL path has one
+ * material; the driver's own replay applies it at the very vertex). */
+static size_t change_quad(qgl_topology topo, size_t i)
+{
+    if (topo == QGL_QUADS)
+        return i / 4;
+    return i < 4 ? 0 : (i - 2) / 2;
+}
+
+/* Whether a run of this path is drawn by handing its vertices to the driver's immediate mode
+ * (the split and the driver's own quads of a captured primitive: the driver then merges it
+ * with the primitives around it, as it would have natively). */
+static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
+{
+    return !ctx->has_vao || ((flags & QGL__DRAW_IMMEDIATE) && ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
+}
+
+int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
+                    const qgl__change *chg, size_t nchg)
+{
     size_t nq = qgl__nquads(topo, v->n);
-    if (!nq)
+    if (!nq) {
+        for (size_t c = 0; c < nchg; c++)
+            ctx->gl.Materialfv(chg[c].face, chg[c].pname, chg[c].v);
         return 0;
+    }
     qgl__state st;
     qgl__query_state(ctx, &st);
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
@@ -961,14 +1000,18 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
         st.pv_material = st.nonaffine = 1;
         st.lit_by_inputs = 0;
     }
-    if (draw_natively(ctx, &st, facts, nq))
+    if (!nchg && draw_natively(ctx, &st, facts, nq))
         return (int)nq;
     if (!plan(ctx, &st, v, topo, nq, facts))
         return -1;
+    ctx->chg = chg, ctx->nchg = nchg, ctx->chg_next = 0, ctx->chg_verts = v;
     ctx->stats.quads += nq;
+    int arrays = 0;
+    for (size_t q = 0; q < nq && !arrays; q++)
+        arrays = !replayed(ctx, ctx->path[q], flags);
     saved sv;
-    if (ctx->has_vao) {
-        save(ctx, &st, v->mask, &sv);
+    if (arrays) {
+        save(ctx, &st, (flags & QGL__DRAW_IMMEDIATE) ? 0 : v->mask, &sv);
         if (!upload(ctx, v, topo == QGL_QUAD_STRIP ? nq : 0)) {
             restore(ctx, &sv);
             return -1;
@@ -976,16 +1019,24 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
     }
     GLint bound = st.program;
     for (size_t q0 = 0; q0 < nq;) {
-        size_t q1 = q0 + 1;
-        while (q1 < nq && ctx->path[q1] == ctx->path[q0])
-            q1++;
         unsigned char p = ctx->path[q0];
+        size_t q1 = q0 + 1, limit = nq;
+        if (!replayed(ctx, p, flags)) { /* its quads share the material in force at the first */
+            while (ctx->chg_next < nchg && change_quad(topo, chg[ctx->chg_next].vertex) <= q0)
+                apply_changes(ctx, chg[ctx->chg_next].vertex + 1);
+            if (ctx->chg_next < nchg)
+                limit = change_quad(topo, chg[ctx->chg_next].vertex);
+        }
+        while (q1 < nq && q1 < limit && ctx->path[q1] == p)
+            q1++;
         count(ctx, p, q1 - q0);
         if ((p & 15) == QGL__P_MVC && ctx->shader_level == 120)
             draw_glsl120(ctx, &st, v, topo, q0, q1 - q0, p, &bound);
-        else if (!ctx->has_vao)
+        else if (replayed(ctx, p, flags)) {
+            if (bound != st.program)
+                ctx->gl.UseProgram((GLuint)(bound = st.program));
             draw_replay(ctx, &st, v, topo, q0, q1 - q0, p);
-        else if ((p & 15) == QGL__P_MVC) {
+        } else if ((p & 15) == QGL__P_MVC) {
             if (!draw_mvc(ctx, &st, v, topo, q0, q1 - q0, p, &bound)) {
                 recount_as_subdiv(ctx, q1 - q0);
                 draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
@@ -996,7 +1047,11 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
             draw_split(ctx, topo, q0, q1 - q0, st.program, &bound);
         q0 = q1;
     }
-    if (ctx->has_vao)
+    apply_changes(ctx, SIZE_MAX);
+    ctx->nchg = 0;
+    if (arrays)
         restore(ctx, &sv);
+    else if (bound != st.program)
+        ctx->gl.UseProgram((GLuint)st.program);
     return (int)nq;
 }

@@ -163,26 +163,27 @@ int qgl__gl_load(struct qgl__gl *gl, void *(*get_proc)(const char *));
 /* ---- captured vertices: one array per attribute (structure of arrays) ------------------- */
 
 /* The attributes a vertex carries besides its position, one row each: X(name, floats stored
- * per vertex, the GL_CURRENT_* value, the client array). Everything that handles attributes
- * one by one (capture, conversion, upload, replay, current values) walks this table; the
- * texture units' rows differ only by unit. */
+ * per vertex, the GL_CURRENT_* value, the client array, integer data normalized). Everything
+ * that handles attributes one by one (capture, conversion, upload, replay, current values)
+ * walks this table; the texture units' rows differ only by unit. */
 #define QGL__ATTRIBS(X) \
-    X(COLOR, 4, GL_CURRENT_COLOR, GL_COLOR_ARRAY) \
-    X(NORMAL, 3, GL_CURRENT_NORMAL, GL_NORMAL_ARRAY) \
-    X(COLOR2, 3, GL_CURRENT_SECONDARY_COLOR, GL_SECONDARY_COLOR_ARRAY) \
-    X(FOG, 1, GL_CURRENT_FOG_COORD, GL_FOG_COORD_ARRAY) \
-    X(TEX0, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
-    X(TEX1, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
-    X(TEX2, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY) \
-    X(TEX3, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY)
+    X(COLOR, 4, GL_CURRENT_COLOR, GL_COLOR_ARRAY, 1) \
+    X(NORMAL, 3, GL_CURRENT_NORMAL, GL_NORMAL_ARRAY, 1) \
+    X(COLOR2, 3, GL_CURRENT_SECONDARY_COLOR, GL_SECONDARY_COLOR_ARRAY, 1) \
+    X(FOG, 1, GL_CURRENT_FOG_COORD, GL_FOG_COORD_ARRAY, 0) \
+    X(TEX0, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY, 0) \
+    X(TEX1, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY, 0) \
+    X(TEX2, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY, 0) \
+    X(TEX3, 4, GL_CURRENT_TEXTURE_COORDS, GL_TEXTURE_COORD_ARRAY, 0)
 
-#define QGL__AT_ENUM(name, floats, current, array) QGL__AT_##name,
+#define QGL__AT_ENUM(name, floats, current, array, normalized) QGL__AT_##name,
 enum { QGL__ATTRIBS(QGL__AT_ENUM) QGL__NATTR };
 #undef QGL__AT_ENUM
 
 typedef struct qgl__attrib_info {
     int floats;
     GLenum current, array;
+    int normalized;
     int unit;                 /* texture unit, -1 for the others */
 } qgl__attrib_info;
 extern const qgl__attrib_info qgl__attribs[QGL__NATTR];
@@ -220,6 +221,36 @@ typedef struct qgl__verts {
     unsigned char *edge;      /* 1 */
     float *mat;               /* QGL__MATERIAL_FLOATS */
 } qgl__verts;
+
+/* arrays.c: a fixed-function client array as the driver describes it (size 0: disabled). */
+typedef struct qgl__array {
+    int size;
+    GLenum type;
+    int bgra;
+    size_t stride;
+    const unsigned char *ptr;  /* element 0 in client memory, or the offset in buffer */
+    GLuint buffer;
+    unsigned char *copy;       /* qgl__arrays_fetch's copy of buffer data */
+} qgl__array;
+typedef struct qgl__arrays {
+    qgl__array vertex, edge, attr[QGL__NATTR];
+} qgl__arrays;
+/* The enabled arrays (units: texture units the context has); 0 when one has a layout we do not
+ * convert. */
+int qgl__arrays_read(struct qgl__gl *gl, int version, int units, qgl__arrays *out);
+/* Copies elements [lo, hi] of the arrays in buffer objects back to memory; 0 on failure. */
+int qgl__arrays_fetch(struct qgl__gl *gl, qgl__arrays *s, size_t lo, size_t hi);
+void qgl__arrays_free(qgl__arrays *s);
+/* Element i (in memory) into out, GL's defaults past its size; immediate: converted as the
+ * glArrayElement path converts it, else as a draw from arrays fetches it. */
+void qgl__array_element(const qgl__array *arr, size_t i, int normalized, int immediate, float out[4]);
+
+/* A glMaterial given inside glBegin/glEnd before vertex `vertex` of a batch. */
+typedef struct qgl__change {
+    uint32_t vertex;
+    GLenum face, pname;
+    float v[4];
+} qgl__change;
 
 /* The driver's current value of attribute a is set to v (qgl__attribs[a].floats of them). */
 void qgl__set_current(struct qgl__gl *gl, int a, const float *v);
@@ -398,6 +429,9 @@ struct qgl_context {
     } programs[QGL__MAX_PROGRAMS];
     int nprograms, next_evict; /* cache (failures too, so a bad key is compiled once) */
     int material_arrays;      /* our VAO's material attribute arrays are enabled */
+    const qgl__change *chg;   /* the drawing batch's material changes, the next one due */
+    size_t nchg, chg_next;
+    const qgl__verts *chg_verts;
     qgl__state state;         /* the state of the last draw (state.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
@@ -439,13 +473,21 @@ int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v);
 
 /* draw.c */
 int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
-/* qgl__draw with the cached facts of a retained batch (NULL: none). */
+/* qgl__draw with the cached facts of a retained batch (NULL: none) and QGL__DRAW_* flags. */
+enum {
+    QGL__DRAW_IMMEDIATE = 1 /* v was captured from glBegin/glEnd and the caller sets the current
+                               attributes afterwards: split runs may be replayed as such */
+};
+int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
+                    const qgl__change *chg, size_t nchg);
 int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts);
 uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
 /* state.c: the owner will mark every change of the groups from now on; a group changed. */
 void qgl__state_track(qgl_context *ctx);
 void qgl__state_dirty(qgl_context *ctx, unsigned groups);
+/* The state as a draw now would read it (refreshing what changed). */
+const qgl__state *qgl__state_now(qgl_context *ctx);
 /* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */
 size_t qgl__nquads(qgl_topology topo, size_t n);
 size_t qgl__corner(qgl_topology topo, size_t q, int c);

@@ -364,20 +364,10 @@ QGL_API void qglMaterialfv(unsigned face, unsigned pname, const float *params)
  * them before qglEnd: no call reaches the driver meanwhile); data in a buffer object is read
  * back element by element. Outside a captured primitive the call goes to the driver. */
 
-enum { ARR_VERTEX, ARR_COLOR, ARR_COLOR2, ARR_NORMAL, ARR_FOG, ARR_EDGE, ARR_TEX0, ARR_COUNT = ARR_TEX0 + QGL_MAX_TEXUNITS };
-
-typedef struct client_array {
-    int size;                  /* components; 0 = disabled */
-    GLenum type;
-    int bgra;
-    size_t stride;
-    const unsigned char *ptr;  /* client memory, or the offset into buffer */
-    GLuint buffer;
-} client_array;
-
 struct qgl__client_arrays {
     int valid;                 /* read since the capture's qglBegin */
-    client_array a[ARR_COUNT];
+    int ok;                    /* every enabled array has a layout we convert */
+    qgl__arrays a;
 };
 
 /* A new capture reads the arrays afresh: the application may have changed them. */
@@ -387,172 +377,41 @@ static void forget_arrays(qgl_context *c)
         c->arrays->valid = 0;
 }
 
-static const struct {
-    GLenum enable, size, type, stride, pointer, binding;
-    int fixed_size;            /* arrays with no size query */
-} array_queries[ARR_TEX0 + 1] = {
-    {GL_VERTEX_ARRAY, GL_VERTEX_ARRAY_SIZE, GL_VERTEX_ARRAY_TYPE, GL_VERTEX_ARRAY_STRIDE, GL_VERTEX_ARRAY_POINTER,
-     GL_VERTEX_ARRAY_BUFFER_BINDING, 0},
-    {GL_COLOR_ARRAY, GL_COLOR_ARRAY_SIZE, GL_COLOR_ARRAY_TYPE, GL_COLOR_ARRAY_STRIDE, GL_COLOR_ARRAY_POINTER,
-     GL_COLOR_ARRAY_BUFFER_BINDING, 0},
-    {GL_SECONDARY_COLOR_ARRAY, GL_SECONDARY_COLOR_ARRAY_SIZE, GL_SECONDARY_COLOR_ARRAY_TYPE,
-     GL_SECONDARY_COLOR_ARRAY_STRIDE, GL_SECONDARY_COLOR_ARRAY_POINTER, GL_SECONDARY_COLOR_ARRAY_BUFFER_BINDING, 0},
-    {GL_NORMAL_ARRAY, 0, GL_NORMAL_ARRAY_TYPE, GL_NORMAL_ARRAY_STRIDE, GL_NORMAL_ARRAY_POINTER,
-     GL_NORMAL_ARRAY_BUFFER_BINDING, 3},
-    {GL_FOG_COORD_ARRAY, 0, GL_FOG_COORD_ARRAY_TYPE, GL_FOG_COORD_ARRAY_STRIDE, GL_FOG_COORD_ARRAY_POINTER,
-     GL_FOG_COORD_ARRAY_BUFFER_BINDING, 1},
-    {GL_EDGE_FLAG_ARRAY, 0, 0, GL_EDGE_FLAG_ARRAY_STRIDE, GL_EDGE_FLAG_ARRAY_POINTER,
-     GL_EDGE_FLAG_ARRAY_BUFFER_BINDING, 1},
-    {GL_TEXTURE_COORD_ARRAY, GL_TEXTURE_COORD_ARRAY_SIZE, GL_TEXTURE_COORD_ARRAY_TYPE,
-     GL_TEXTURE_COORD_ARRAY_STRIDE, GL_TEXTURE_COORD_ARRAY_POINTER, GL_TEXTURE_COORD_ARRAY_BUFFER_BINDING, 0},
-};
-
-size_t qgl__type_size(GLenum type)
-{
-    switch (type) {
-    case GL_BYTE: case GL_UNSIGNED_BYTE: return 1;
-    case GL_SHORT: case GL_UNSIGNED_SHORT: return 2;
-    case GL_INT: case GL_UNSIGNED_INT: case GL_FLOAT: return 4;
-    case GL_DOUBLE: return 8;
-    default: return 0;
-    }
-}
-
-/* Arrays of GL versions the context lacks stay disabled (querying them is an error). */
-static void read_array(qgl_context *c, int q, client_array *arr)
-{
-    struct qgl__gl *gl = &c->gl;
-    GLint size = array_queries[q].fixed_size, type = GL_UNSIGNED_BYTE, stride = 0, buffer = 0;
-    void *ptr = NULL;
-    memset(arr, 0, sizeof *arr);
-    if ((q == ARR_COLOR2 || q == ARR_FOG) && c->version < 14)
-        return;
-    if (!gl->IsEnabled(array_queries[q].enable))
-        return;
-    if (array_queries[q].size)
-        gl->GetIntegerv(array_queries[q].size, &size);
-    if (array_queries[q].type)
-        gl->GetIntegerv(array_queries[q].type, &type);
-    gl->GetIntegerv(array_queries[q].stride, &stride);
-    if (c->version >= 15)
-        gl->GetIntegerv(array_queries[q].binding, &buffer);
-    gl->GetPointerv(array_queries[q].pointer, &ptr);
-    arr->bgra = size == GL_BGRA;
-    arr->type = (GLenum)type;
-    arr->size = arr->bgra ? 4 : size;
-    if (!qgl__type_size(arr->type) || arr->size < 1 || arr->size > 4 || (buffer && !gl->GetBufferSubData)) {
-        arr->size = 0; /* a layout we do not convert: ignored */
-        return;
-    }
-    arr->stride = stride ? (size_t)stride : (size_t)arr->size * qgl__type_size(arr->type);
-    arr->ptr = ptr;
-    arr->buffer = (GLuint)buffer;
-}
-
 static int read_arrays(qgl_context *c)
 {
-    struct qgl__gl *gl = &c->gl;
     if (!c->arrays && !(c->arrays = calloc(1, sizeof *c->arrays)))
         return 0;
-    if (c->arrays->valid)
-        return 1;
-    for (int q = 0; q < ARR_TEX0; q++)
-        read_array(c, q, &c->arrays->a[q]);
-    GLint active = GL_TEXTURE0;
-    gl->GetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &active);
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-        client_array *arr = &c->arrays->a[ARR_TEX0 + u];
-        memset(arr, 0, sizeof *arr);
-        if (u >= c->max_units)
-            continue;
-        gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)u);
-        read_array(c, ARR_TEX0, arr);
+    if (!c->arrays->valid) {
+        c->arrays->ok = qgl__arrays_read(&c->gl, c->version, c->max_units, &c->arrays->a);
+        c->arrays->valid = 1;
     }
-    gl->ClientActiveTexture((GLenum)active);
-    c->arrays->valid = 1;
-    return 1;
-}
-
-/* Component k of element e as GL converts it: integer colours and normals are normalized. */
-static float component(const unsigned char *e, GLenum type, int k, int normalized)
-{
-    union { GLbyte b; GLshort s; GLushort us; GLint i; GLuint ui; GLfloat f; GLdouble d; } u;
-    size_t n = qgl__type_size(type);
-    memcpy(&u, e + n * (size_t)k, n);
-    switch (type) {
-    case GL_BYTE: return normalized ? fmaxf(u.b / 127.0f, -1.0f) : u.b;
-    case GL_UNSIGNED_BYTE: return normalized ? e[k] / 255.0f : e[k];
-    case GL_SHORT: return normalized ? fmaxf(u.s / 32767.0f, -1.0f) : u.s;
-    case GL_UNSIGNED_SHORT: return normalized ? u.us / 65535.0f : u.us;
-    case GL_INT: return normalized ? fmaxf((float)(u.i / 2147483647.0), -1.0f) : (float)u.i;
-    case GL_UNSIGNED_INT: return normalized ? (float)(u.ui / 4294967295.0) : (float)u.ui;
-    case GL_FLOAT: return u.f;
-    default: return (float)u.d;
-    }
-}
-
-/* Element i of arr into out, components it lacks from GL's defaults (0, 0, 0, 1). */
-static void fetch_element(qgl_context *c, const client_array *arr, GLint i, int normalized, float out[4])
-{
-    unsigned char tmp[32];
-    size_t bytes = (size_t)arr->size * qgl__type_size(arr->type);
-    const unsigned char *e = arr->ptr + (size_t)i * arr->stride;
-    if (arr->buffer) {
-        GLint saved = 0;
-        c->gl.GetIntegerv(GL_ARRAY_BUFFER_BINDING, &saved);
-        c->gl.BindBuffer(GL_ARRAY_BUFFER, arr->buffer);
-        c->gl.GetBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(uintptr_t)e, (GLsizeiptr)bytes, tmp);
-        c->gl.BindBuffer(GL_ARRAY_BUFFER, (GLuint)saved);
-        e = tmp;
-    }
-    out[0] = out[1] = out[2] = 0;
-    out[3] = 1;
-    for (int k = 0; k < arr->size; k++)
-        out[k] = component(e, arr->type, k, normalized);
-    if (arr->bgra) {
-        float r = out[0];
-        out[0] = out[2], out[2] = r;
-    }
-}
-
-static int is_float(GLenum type)
-{
-    return type == GL_FLOAT || type == GL_DOUBLE;
+    return c->arrays->ok;
 }
 
 static void feed_element(qgl_context *c, GLint i)
 {
-    const client_array *a = c->arrays->a;
+    qgl__arrays e = c->arrays->a; /* this element's copy of buffer data, if any */
     float v[4];
-    if (a[ARR_COLOR].size) {
-        fetch_element(c, &a[ARR_COLOR], i, !is_float(a[ARR_COLOR].type), v);
-        qglColor4fv(v);
+    if (!qgl__arrays_fetch(&c->gl, &e, (size_t)i, (size_t)i)) {
+        qgl__arrays_free(&e);
+        return;
     }
-    if (a[ARR_COLOR2].size) {
-        fetch_element(c, &a[ARR_COLOR2], i, !is_float(a[ARR_COLOR2].type), v);
-        qglSecondaryColor3fv(v);
-    }
-    if (a[ARR_NORMAL].size) {
-        fetch_element(c, &a[ARR_NORMAL], i, !is_float(a[ARR_NORMAL].type), v);
-        qglNormal3fv(v);
-    }
-    if (a[ARR_FOG].size) {
-        fetch_element(c, &a[ARR_FOG], i, 0, v);
-        qglFogCoordf(v[0]);
-    }
-    if (a[ARR_EDGE].size) {
-        fetch_element(c, &a[ARR_EDGE], i, 0, v);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (e.attr[a].size) {
+            qgl__array_element(&e.attr[a], (size_t)i, qgl__attribs[a].normalized, 1, v);
+            if (!(c->given & (1u << a)) && !join(c, 1u << a))
+                continue;
+            memcpy(c->cur[a], v, sizeof v);
+        }
+    if (e.edge.size) {
+        qgl__array_element(&e.edge, (size_t)i, 0, 1, v);
         qglEdgeFlag(v[0] != 0);
     }
-    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (a[ARR_TEX0 + u].size) {
-            fetch_element(c, &a[ARR_TEX0 + u], i, 0, v);
-            qglMultiTexCoord4fv(GL_TEXTURE0 + (unsigned)u, v);
-        }
-    if (a[ARR_VERTEX].size) {
-        fetch_element(c, &a[ARR_VERTEX], i, 0, v);
+    if (e.vertex.size) {
+        qgl__array_element(&e.vertex, (size_t)i, 0, 1, v);
         qglVertex4fv(v);
     }
+    qgl__arrays_free(&e);
 }
 
 QGL_API void qglArrayElement(int i)

@@ -476,6 +476,13 @@ void qgl__state_dirty(qgl_context *ctx, unsigned groups)
     ctx->state_valid &= ~groups;
 }
 
+const qgl__state *qgl__state_now(qgl_context *ctx)
+{
+    qgl__state st;
+    qgl__query_state(ctx, &st);
+    return &ctx->state;
+}
+
 /* The state of this draw into st: read in full, or (an owner that marks changes) only the
  * groups changed since the last draw; the rest is the copy kept from then. */
 void qgl__query_state(qgl_context *ctx, qgl__state *st)

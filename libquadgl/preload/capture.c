@@ -1,15 +1,19 @@
 /* capture.c: glBegin/glEnd with GL_QUADS and GL_QUAD_STRIP, and every call legal between them.
  *
  * A captured glBegin is not passed to the driver: the vertices collect in the context's
- * pl_prim and are drawn at glEnd (draw.c), or recorded when a display list is being compiled
- * (lists.c). Each attribute call updates the prim's current vertex; glVertex appends it. The
- * first time an attribute is given after some vertices, those earlier vertices take the value
- * GL had at glBegin; outside a list that value is read right away (the driver has not seen
- * the glBegin, so glGet is legal), inside a list it is read when the list runs. Immediate
- * primitives are drawn in chunks of whole quads, so memory stays bounded however many
- * vertices one glBegin/glEnd holds. Misuse keeps the driver's errors: glBegin inside a
- * captured glBegin makes the driver report GL_INVALID_OPERATION (through a glEnd it sees with
- * no glBegin), a glEnd with no glBegin is the driver's own, vertices outside go to the driver. */
+ * pl_prim, one array per attribute in the GL path's layout (qgl__verts), and are drawn at
+ * glEnd (draw.c), or recorded when a display list is being compiled (lists.c). Each attribute
+ * call sets the prim's value for the next vertex; glVertex appends one. The first time an
+ * attribute is given after some vertices, those earlier vertices take the value GL had at
+ * glBegin: outside a list it is known now (our copy of the current attributes, or the driver,
+ * which has not seen the glBegin), inside a list it is read when the list runs. Edge flags and
+ * generic attributes (glVertexAttrib) are captured the same way, for the driver's own drawing
+ * of the primitive: edge flags matter in polygon mode line, generic attributes to a program.
+ * Immediate primitives are drawn in chunks of whole quads, so memory stays bounded however
+ * many vertices one glBegin/glEnd holds. Misuse keeps the driver's errors: a call GL forbids
+ * inside glBegin/glEnd (another glBegin, a state change, a query) makes the driver report
+ * GL_INVALID_OPERATION through a glEnd it sees with no glBegin, and has no other effect; a
+ * glEnd with no glBegin is the driver's own; vertices outside go to the driver. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -21,167 +25,144 @@
 void pl_prim_reset(pl_prim *p, GLenum mode)
 {
     p->mode = mode;
-    p->n = 0;
-    p->given = 0;
+    p->v.n = 0;
+    p->v.mask = 0;
+    p->generic_given = 0;
     p->nmat = 0;
-    p->edge_off = 0;
     p->lost = 0;
     p->from_arrays = 0;
     p->native_list = 0;
     p->retained = NULL;
     memset(p->first, 0, sizeof p->first);
-    memset(&p->cur, 0, sizeof p->cur);
-    p->cur.pos[3] = 1.0f;
+    p->cur_edge = GL_TRUE;
 }
 
 void pl_prim_free(pl_prim *p)
 {
     pl_retained_free(p->retained);
-    free(p->v);
+    qgl__verts_free(&p->v);
+    for (int g = 0; g < PL_GENERICS; g++)
+        free(p->generic[g]);
     free(p->mat);
     memset(p, 0, sizeof *p);
 }
 
+/* Room for n vertices in every array the prim uses (mask, and the generic ones). */
+static int pl_prim_reserve(pl_prim *p, size_t n, unsigned mask)
+{
+    size_t old = p->v.cap;
+    if (!qgl__verts_reserve(&p->v, n, mask))
+        return -1;
+    for (int g = 0; g < PL_GENERICS; g++)
+        if ((p->generic_given & (1u << g)) && (!p->generic[g] || p->v.cap != old)) {
+            float *grown = realloc(p->generic[g], p->v.cap * 4 * sizeof(float));
+            if (!grown)
+                return -1;
+            p->generic[g] = grown;
+        }
+    return 0;
+}
+
 int pl_prim_copy(pl_prim *dst, const pl_prim *src)
 {
+    size_t n = src->v.n;
     *dst = *src;
+    memset(&dst->v, 0, sizeof dst->v);
+    memset(dst->generic, 0, sizeof dst->generic);
     dst->retained = NULL;
-    dst->v = NULL;
     dst->mat = NULL;
-    dst->cap = src->n;
     dst->capmat = src->nmat;
-    if (src->n && !(dst->v = malloc(src->n * sizeof *dst->v)))
-        return -1;
-    if (src->nmat && !(dst->mat = malloc(src->nmat * sizeof *dst->mat))) {
-        free(dst->v);
-        dst->v = NULL;
+    if (pl_prim_reserve(dst, n ? n : 1, src->v.mask) != 0 ||
+        (src->nmat && !(dst->mat = malloc(src->nmat * sizeof *dst->mat)))) {
+        pl_prim_free(dst);
         return -1;
     }
-    if (src->n)
-        memcpy(dst->v, src->v, src->n * sizeof *dst->v);
+    dst->v.mask = src->v.mask;
+    dst->v.n = n;
+    for (size_t i = 0; i < n; i++)
+        qgl__verts_copy(&dst->v, i, &src->v, i);
+    for (int g = 0; g < PL_GENERICS; g++)
+        if (src->generic_given & (1u << g))
+            memcpy(dst->generic[g], src->generic[g], n * 4 * sizeof(float));
     if (src->nmat)
         memcpy(dst->mat, src->mat, src->nmat * sizeof *dst->mat);
     return 0;
 }
 
-static int pl_prim_grow(pl_prim *p)
-{
-    size_t cap = p->cap ? p->cap * 2 : 256;
-    pl_vertex *v = realloc(p->v, cap * sizeof *v);
-    if (!v)
-        return -1;
-    p->v = v;
-    p->cap = cap;
-    return 0;
-}
-
-int pl_prim_push(pl_prim *p)
-{
-    if (p->n == p->cap && pl_prim_grow(p) != 0)
-        return -1;
-    p->v[p->n++] = p->cur;
-    return 0;
-}
-
 size_t pl_prim_quads(const pl_prim *p)
 {
-    if (p->mode == GL_QUADS)
-        return p->n / 4;
-    return p->n >= 4 ? (p->n - 2) / 2 : 0;
+    return qgl__nquads(p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP, p->v.n);
 }
 
 /* ---- attributes ------------------------------------------------------------------------------- */
 
-float *pl_attr_ptr(pl_vertex *v, int a)
+/* Vertices [0, end) of attribute slot a (a row of QGL__ATTRIBS, QGL__NATTR for the edge flag)
+ * take the context's current value. */
+static void pl_fill(pl_ctx *x, pl_prim *p, int a, size_t end)
 {
-    switch (a) {
-    case PL_A_COLOR: return v->color;
-    case PL_A_SECONDARY: return v->secondary;
-    case PL_A_NORMAL: return v->normal;
-    case PL_A_FOG: return &v->fog;
-    default: return v->tex[a - PL_A_TEX0];
-    }
-}
-
-size_t pl_attr_size(int a)
-{
-    switch (a) {
-    case PL_A_COLOR: return 4;
-    case PL_A_SECONDARY: case PL_A_NORMAL: return 3;
-    case PL_A_FOG: return 1;
-    default: return 4;
-    }
-}
-
-/* Reads the context's current value of attribute a (pl_attr_size(a) floats to out). */
-void pl_read_current(int a, float *out)
-{
-    static const GLenum pnames[] = {GL_CURRENT_COLOR, GL_CURRENT_SECONDARY_COLOR, GL_CURRENT_NORMAL,
-                                    GL_CURRENT_FOG_COORD};
-    float value[4] = {0, 0, 0, 0};
-    GLint active = 0;
-    if (a < PL_A_TEX0) {
-        REAL(glGetFloatv)(pnames[a], value);
-    } else {
-        /* The current texture coordinates are per active texture unit. */
-        REAL(glGetIntegerv)(GL_ACTIVE_TEXTURE, &active);
-        REAL(glActiveTexture)(GL_TEXTURE0 + (GLenum)(a - PL_A_TEX0));
-        REAL(glGetFloatv)(GL_CURRENT_TEXTURE_COORDS, value);
-        REAL(glActiveTexture)((GLenum)active);
-    }
-    memcpy(out, value, pl_attr_size(a) * sizeof *out);
-}
-
-void pl_prim_backfill(pl_prim *p, int a)
-{
-    float value[4];
-    size_t end = p->first[a] < p->n ? p->first[a] : p->n;
-    if (end == 0)
+    if (a == QGL__NATTR) {
+        memset(p->v.edge, pl_current_edge(x), end);
         return;
-    pl_read_current(a, value);
+    }
+    float value[4];
+    int k = qgl__attribs[a].floats;
+    pl_current_value(x, a, value);
     for (size_t i = 0; i < end; i++)
-        memcpy(pl_attr_ptr(&p->v[i], a), value, pl_attr_size(a) * sizeof(float));
+        memcpy(p->v.attr[a] + (size_t)k * i, value, (size_t)k * sizeof(float));
 }
 
-/* Notes that attribute a is given from the next vertex on. */
-static inline void pl_given(pl_ctx *x, int a)
+static void pl_fill_generic(pl_prim *p, int g, size_t end)
+{
+    float value[4] = {0, 0, 0, 1};
+    REAL(glGetVertexAttribfv)((GLuint)g, GL_CURRENT_VERTEX_ATTRIB, value);
+    for (size_t i = 0; i < end; i++)
+        memcpy(p->generic[g] + 4 * i, value, sizeof value);
+}
+
+void pl_prim_backfill(pl_ctx *x, pl_prim *p)
+{
+    size_t n = p->v.n;
+    for (int a = 0; a <= QGL__NATTR; a++) {
+        unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
+        if ((p->v.mask & bit) && p->first[a] > 0)
+            pl_fill(x, p, a, p->first[a] < n ? p->first[a] : n);
+    }
+    for (int g = 0; g < PL_GENERICS; g++)
+        if ((p->generic_given & (1u << g)) && p->generic_first[g] > 0)
+            pl_fill_generic(p, g, p->generic_first[g] < n ? p->generic_first[g] : n);
+}
+
+/* Attribute slot a is given from the next vertex on: its array joins the prim. Outside a list
+ * the earlier vertices' value is known now and will not change. */
+static int pl_given(pl_ctx *x, int a)
 {
     pl_prim *p = &x->prim;
-    if (PL_LIKELY(p->given & (1u << a)))
-        return;
-    p->given |= 1u << a;
-    p->first[a] = (uint32_t)p->n;
-    /* Outside a list the earlier vertices' value is known now and will not change. */
-    if (p->n && !x->compiling) {
-        pl_prim_backfill(p, a);
+    unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
+    if (PL_LIKELY(p->v.mask & bit))
+        return 0;
+    if (pl_prim_reserve(p, p->v.n ? p->v.n : 1, p->v.mask | bit) != 0) {
+        p->lost = 1;
+        return -1;
+    }
+    p->v.mask |= bit;
+    p->first[a] = (uint32_t)p->v.n;
+    if (p->v.n && !x->compiling) {
+        pl_fill(x, p, a, p->v.n);
         p->first[a] = 0;
     }
+    return 0;
 }
 
-void pl_cap_color(pl_ctx *x, float r, float g, float b, float a)
+void pl_cap_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
 {
-    float *c = x->prim.cur.color;
-    pl_given(x, PL_A_COLOR);
-    c[0] = r, c[1] = g, c[2] = b, c[3] = a;
-}
-
-void pl_cap_secondary(pl_ctx *x, float r, float g, float b)
-{
-    float *c = x->prim.cur.secondary;
-    pl_given(x, PL_A_SECONDARY);
-    c[0] = r, c[1] = g, c[2] = b;
-}
-
-void pl_cap_normal(pl_ctx *x, float a, float b, float c)
-{
-    float *n = x->prim.cur.normal;
-    pl_given(x, PL_A_NORMAL);
-    n[0] = a, n[1] = b, n[2] = c;
+    float *c = x->prim.cur[a];
+    if (pl_given(x, a) != 0)
+        return;
+    c[0] = s, c[1] = t, c[2] = r, c[3] = q;
 }
 
 void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
 {
-    float *tc;
     if (unit >= PL_TEXUNITS) {
         /* Beyond the units a batch carries: the driver draws the primitive, with the last
          * coordinates given for this unit on every vertex. */
@@ -189,21 +170,64 @@ void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
         REAL(glMultiTexCoord4f)(GL_TEXTURE0 + unit, s, t, r, q);
         return;
     }
-    pl_given(x, PL_A_TEX0 + (int)unit);
-    tc = x->prim.cur.tex[unit];
-    tc[0] = s, tc[1] = t, tc[2] = r, tc[3] = q;
-}
-
-void pl_cap_fog(pl_ctx *x, float f)
-{
-    pl_given(x, PL_A_FOG);
-    x->prim.cur.fog = f;
+    pl_cap_attrib(x, QGL__AT_TEX0 + (int)unit, s, t, r, q);
 }
 
 void pl_cap_edgeflag(pl_ctx *x, GLboolean flag)
 {
-    if (!flag)
-        x->prim.edge_off = 1;
+    if (pl_given(x, QGL__NATTR) == 0)
+        x->prim.cur_edge = flag ? GL_TRUE : GL_FALSE;
+}
+
+int pl_hook_edgeflag(pl_ctx *x, GLboolean flag)
+{
+    if (x->capturing) {
+        pl_cap_edgeflag(x, flag);
+        return 1;
+    }
+    if (x->compiling)
+        x->seg_dirty |= PL_D_CURRENT;
+    if (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE) {
+        x->cur_edge = flag ? GL_TRUE : GL_FALSE;
+        x->cur_known |= QGL__A_EDGE;
+    }
+    return 0;
+}
+
+void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
+{
+    pl_prim *p = &x->prim;
+    if (index == 0) { /* generic attribute 0 is the vertex position */
+        pl_cap_vertex(x, s, t, r, q);
+        return;
+    }
+    if (index >= PL_GENERICS) {
+        p->lost = 1;
+        return;
+    }
+    if (!(p->generic_given & (1u << index))) {
+        p->generic_given |= 1u << index;
+        if (pl_prim_reserve(p, p->v.n ? p->v.n : 1, p->v.mask) != 0) {
+            p->generic_given &= ~(1u << index);
+            p->lost = 1;
+            return;
+        }
+        p->generic_first[index] = (uint32_t)p->v.n;
+        if (p->v.n && !x->compiling) {
+            pl_fill_generic(p, (int)index, p->v.n);
+            p->generic_first[index] = 0;
+        }
+    }
+    float *c = p->cur_generic[index];
+    c[0] = s, c[1] = t, c[2] = r, c[3] = q;
+}
+
+int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
+{
+    if (!x->capturing)
+        return 0;
+    pl_cap_generic(x, index, s, t, r, q);
+    return 1;
 }
 
 static int pl_material_count(GLenum pname)
@@ -231,34 +255,37 @@ static void pl_push_material(pl_ctx *x, GLenum face, GLenum pname, const float *
     }
     m = &p->mat[p->nmat++];
     memset(m, 0, sizeof *m);
-    m->vertex = (uint32_t)p->n;
+    m->vertex = (uint32_t)p->v.n;
     m->face = face;
     m->pname = pname;
     memcpy(m->v, v, (size_t)n * sizeof *v);
 }
 
-void pl_cap_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *params)
-{
-    int n = pl_material_count(pname);
-    if (n == 0) {
-        REAL(glMaterialfv)(face, pname, params); /* the driver's own error */
-        return;
-    }
-    pl_push_material(x, face, pname, params, n);
-}
-
-void pl_cap_materiali(pl_ctx *x, GLenum face, GLenum pname, const GLint *params)
+/* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. */
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv)
 {
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
-    if (n == 0) {
-        REAL(glMaterialiv)(face, pname, params);
-        return;
-    }
-    /* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. */
+    if (!x->capturing)
+        return 0;
+    if (n == 0 || (!fv && !iv))
+        return 0; /* the driver's own error (it saw no glBegin: the same one) */
     for (int i = 0; i < n; i++)
-        v[i] = (n == 4) ? PL_I(params[i]) : (float)params[i];
+        v[i] = fv ? fv[i] : (n == 4) ? PL_I(iv[i]) : (float)iv[i];
     pl_push_material(x, face, pname, v, n);
+    return 1;
+}
+
+int pl_hook_array_element(pl_ctx *x, GLint i)
+{
+    if (x->capturing) {
+        pl_cap_array_element(x, i);
+        return 1;
+    }
+    x->cur_known = 0; /* its attributes become the current ones */
+    if (x->compiling)
+        x->seg_dirty |= PL_D_CURRENT;
+    return 0;
 }
 
 /* ---- vertices and chunks ---------------------------------------------------------------------- */
@@ -268,31 +295,48 @@ static void pl_flush_chunk(pl_ctx *x)
 {
     pl_prim *p = &x->prim;
     size_t keep = p->mode == GL_QUAD_STRIP ? 2 : 0;
-    size_t n = p->n;
+    size_t n = p->v.n;
     pl_draw_prim(x, p); /* applies the chunk's materials: they are not kept */
-    memmove(p->v, p->v + n - keep, keep * sizeof *p->v);
-    p->n = keep;
+    for (size_t k = 0; k < keep; k++) {
+        qgl__verts_copy(&p->v, k, &p->v, n - keep + k);
+        for (int g = 0; g < PL_GENERICS; g++)
+            if (p->generic_given & (1u << g))
+                memcpy(p->generic[g] + 4 * k, p->generic[g] + 4 * (n - keep + k), 4 * sizeof(float));
+    }
+    p->v.n = keep;
     p->nmat = 0;
 }
 
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
 {
     pl_prim *p = &x->prim;
-    float *pos = p->cur.pos;
-    pos[0] = a, pos[1] = b, pos[2] = c, pos[3] = d;
-    if (PL_UNLIKELY(p->n == p->cap) && p->n >= PL_CHUNK && !x->compiling && !p->from_arrays)
+    size_t i = p->v.n;
+    if (PL_UNLIKELY(i >= PL_CHUNK) && i % 4 == 0 && !x->compiling && !p->from_arrays) {
         pl_flush_chunk(x);
-    if (pl_prim_push(p) != 0)
+        i = p->v.n;
+    }
+    if (PL_UNLIKELY(i >= p->v.cap) && pl_prim_reserve(p, i + 1, p->v.mask) != 0) {
         p->lost = 1;
+        return;
+    }
+    float *pos = p->v.pos + 4 * i;
+    pos[0] = a, pos[1] = b, pos[2] = c, pos[3] = d;
+    unsigned m = p->v.mask;
+    for (int k = 0; m & QGL__A_ATTRIBS; k++, m >>= 1)
+        if (m & 1) {
+            int f = qgl__attribs[k].floats;
+            memcpy(p->v.attr[k] + (size_t)f * i, p->cur[k], (size_t)f * sizeof(float));
+        }
+    if (p->v.mask & QGL__A_EDGE)
+        p->v.edge[i] = p->cur_edge;
+    for (unsigned g = p->generic_given; g; g &= g - 1) {
+        int k = __builtin_ctz(g);
+        memcpy(p->generic[k] + 4 * i, p->cur_generic[k], 4 * sizeof(float));
+    }
+    p->v.n = i + 1;
 }
 
 /* ---- glBegin / glEnd ---------------------------------------------------------------------------- */
-
-/* GL_INVALID_OPERATION in the driver, as the native glBegin inside glBegin would give. */
-static void pl_invalid_operation(void)
-{
-    REAL(glEnd)();
-}
 
 static int pl_valid_mode(GLenum mode)
 {
@@ -323,6 +367,17 @@ PL_EXPORT void glBegin(GLenum mode)
         pl_list_segment_close(x);
     pl_prim_reset(&x->prim, mode);
     x->capturing = 1;
+    pl_update_slow(x);
+}
+
+/* The current attributes after glEnd are the last ones the primitive gave. */
+static void pl_note_prim_current(pl_ctx *x, const pl_prim *p)
+{
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (p->v.mask & (1u << a))
+            pl_note_current(x, a, p->cur[a]);
+    if (p->v.mask & QGL__A_EDGE)
+        pl_hook_edgeflag(x, p->cur_edge);
 }
 
 PL_EXPORT void glEnd(void)
@@ -335,15 +390,18 @@ PL_EXPORT void glEnd(void)
         return;
     }
     x->capturing = 0;
+    pl_update_slow(x);
     if (x->compiling) {
         pl_list_record_prim(x, &x->prim);
         pl_list_native_begin(x);
-        pl_prim_emit(&x->prim);
+        pl_prim_emit(x, &x->prim);
         pl_list_native_end(x);
         if (x->compile_mode == GL_COMPILE_AND_EXECUTE)
             pl_draw_prim(x, &x->prim);
+        pl_note_prim_current(x, &x->prim);
         pl_list_segment_open(x);
         return;
     }
     pl_draw_prim(x, &x->prim);
+    pl_note_prim_current(x, &x->prim);
 }

@@ -196,11 +196,19 @@ qgl_context *pl_ctx_qgl(pl_ctx *x)
         desc.get_proc = pl_real_proc;
         x->qgl = qgl_gl_create(&desc);
         x->qgl_state = x->qgl ? 1 : -1;
+        if (x->qgl)
+            qgl__state_track(x->qgl); /* every call passes track.c: it marks what changes */
         if (!x->qgl)
             pl_log(PL_LOG_WARN, "the GL path could not start in this context; quads go to the driver");
         else
             pl_log(PL_LOG_INFO, "GL path ready (shader level %d)", qgl_gl_shader_level(x->qgl));
         qgl_gl_make_current(x->qgl);
+    }
+    if (PL_UNLIKELY(__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)))
+        x->dirty |= PL_D_STATE;
+    if (x->qgl && x->dirty) {
+        qgl__state_dirty(x->qgl, x->dirty);
+        x->dirty = 0;
     }
     return x->qgl;
 }

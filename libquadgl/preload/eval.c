@@ -150,7 +150,7 @@ static void pl_eval_vertex(pl_ctx *x, const pl_maps *s, float u, float v)
     float val[4] = {0, 0, 0, 1}, du[4], dv[4];
     if (s->color.dim) {
         pl_map_eval(&s->color, u, v, val, NULL, NULL);
-        pl_cap_color(x, val[0], val[1], val[2], val[3]);
+        pl_cap_attrib(x, QGL__AT_COLOR, val[0], val[1], val[2], val[3]);
     }
     if (s->tex.dim) {
         float tc[4] = {0, 0, 0, 1};
@@ -166,11 +166,11 @@ static void pl_eval_vertex(pl_ctx *x, const pl_maps *s, float u, float v)
         n[2] = du[0] * dv[1] - du[1] * dv[0];
         len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
         if (len > 0)
-            pl_cap_normal(x, (float)(n[0] / len), (float)(n[1] / len), (float)(n[2] / len));
+            pl_cap_attrib(x, QGL__AT_NORMAL, (float)(n[0] / len), (float)(n[1] / len), (float)(n[2] / len), 0);
     } else if (s->normal.dim) {
         float n[3];
         pl_map_eval(&s->normal, u, v, n, NULL, NULL);
-        pl_cap_normal(x, n[0], n[1], n[2]);
+        pl_cap_attrib(x, QGL__AT_NORMAL, n[0], n[1], n[2], 0);
     }
     if (s->vertex.dim) {
         float p[4] = {0, 0, 0, 1};
@@ -210,7 +210,7 @@ static void pl_eval_point(pl_ctx *x, int two, GLint i, GLint j)
 #define PL_EVAL_WRAPPER(name, params, real_args, two, u, v)  \
     PL_EXPORT void name params                               \
     {                                                        \
-        pl_ctx *cx = pl_capturing();                         \
+        pl_ctx *cx = pl_tls_ctx && pl_tls_ctx->capturing ? pl_tls_ctx : NULL;                         \
         if (PL_LIKELY(cx == NULL)) {                         \
             REAL(name) real_args;                            \
             return;                                          \
@@ -229,7 +229,7 @@ PL_EVAL_WRAPPER(glEvalCoord2dv, (const GLdouble *u), (u), 1, u[0], u[1])
 
 PL_EXPORT void glEvalPoint1(GLint i)
 {
-    pl_ctx *cx = pl_capturing();
+    pl_ctx *cx = pl_tls_ctx && pl_tls_ctx->capturing ? pl_tls_ctx : NULL;
     if (PL_LIKELY(cx == NULL)) {
         REAL(glEvalPoint1)(i);
         return;
@@ -239,7 +239,7 @@ PL_EXPORT void glEvalPoint1(GLint i)
 
 PL_EXPORT void glEvalPoint2(GLint i, GLint j)
 {
-    pl_ctx *cx = pl_capturing();
+    pl_ctx *cx = pl_tls_ctx && pl_tls_ctx->capturing ? pl_tls_ctx : NULL;
     if (PL_LIKELY(cx == NULL)) {
         REAL(glEvalPoint2)(i, j);
         return;
@@ -269,12 +269,14 @@ PL_EXPORT void glEvalMesh2(GLenum mode, GLint i1, GLint i2, GLint j1, GLint j2)
         pl_prim_reset(&x->prim, GL_QUAD_STRIP);
         x->prim.from_arrays = 1; /* evaluated values do not become the current ones */
         x->capturing = 1;
+        pl_update_slow(x);
         for (GLint i = i1; i <= i2; i++) {
             float u = pl_grid(dom[0], dom[1], seg[0], i);
             pl_eval_vertex(x, &s, u, v0);
             pl_eval_vertex(x, &s, u, v1);
         }
         x->capturing = 0;
+        pl_update_slow(x);
         pl_draw_prim(x, &x->prim);
     }
     pl_maps_free(&s);

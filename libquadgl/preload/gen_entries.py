@@ -1,20 +1,30 @@
 #!/usr/bin/env python3
 """gen_entries.py: writes the preload library's GL dispatch (pl_entries.h, pl_entries.c).
 
-The library handles a few hundred GL entry points that differ only in argument types
-(glColor3ub, glTexCoord2dv, ...). Each one gets three generated pieces: a slot holding the
-real driver's function, resolved lazily by a per-slot stub on its first call; an exported
-wrapper that calls the slot directly unless a quad primitive is being captured, in which
-case it converts its arguments to floats and hands them to the capture layer; and a row in
-a sorted name table that glXGetProcAddress and friends search. Entry points written by hand
-(glBegin, the draws, the lists) get a slot and a table row here and their bodies in C.
-Functions the library only calls (glGetFloatv, ...) get a slot alone.
+The library exports every GL entry point the system's GL headers declare, so that it sees
+every call a program makes: that is what lets it keep the state the planner needs up to date
+from the calls that change it, instead of asking the driver at every draw. Each entry point
+gets a slot holding the real driver function (resolved lazily by a per-slot stub on its first
+call), a row in a sorted name table that glXGetProcAddress and friends search, and, unless
+its body is written by hand in C, an exported wrapper of one of two kinds:
 
-Usage: gen_entries.py OUT.h OUT.c
+- attribute and vertex calls (glColor3ub, glTexCoord2dv, glVertexAttrib4Nubv, ...) convert
+  their arguments to floats and hand them to a hook, which captures them inside a captured
+  quad primitive and otherwise records the new current value before the driver gets the call;
+- every other call marks, before the driver gets it, which groups of the tracked state it may
+  change (RULES below: matrices, rasterization, the fixed-function key, bindings, current
+  attributes); pure state queries mark nothing.
+
+Inside a captured glBegin/glEnd a call GL does not allow there raises the driver's own
+GL_INVALID_OPERATION and has no other effect, as it would natively.
+
+Usage: gen_entries.py PROTOS OUT.h OUT.c, PROTOS being the preprocessed GL headers (gl.h and
+glext.h with GL_GLEXT_PROTOTYPES).
 """
+import re
 import sys
 
-# (suffix, C type, float conversion of a colour or normal component, plain conversion)
+# (suffix, C type, float conversion of a normalized component, plain conversion)
 TYPES = {
     'b': ('GLbyte', 'PL_B({})', '(float)({})'),
     'ub': ('GLubyte', 'PL_UB({})', '(float)({})'),
@@ -26,193 +36,238 @@ TYPES = {
     'd': ('GLdouble', '(float)({})', '(float)({})'),
 }
 
-entries = []   # (ret, name, [(ctype, pname)], body or None, exported)
+# Dirty groups (preload.h's PL_D_*), by name in RULES.
+GROUPS = {'XFORM': 'PL_D_XFORM', 'RASTER': 'PL_D_RASTER', 'FFP': 'PL_D_FFP', 'BIND': 'PL_D_BIND',
+          'CURRENT': 'PL_D_CURRENT'}
+
+# What a call may change, first match wins. None: a pure query of state (nothing to mark, no
+# pending quads to draw first); '': no tracked state, but the call may see the picture.
+RULES = [
+    (r'^gl(Get|Is)(?!n?(Compressed)?Tex(ture)?(Sub)?Image|(Named)?BufferSubData|Query(Object|Buffer|Indexed)|'
+     r'Sync|n?ColorTable|n?Histogram|n?Minmax|n?Convolution|n?Separable)', None),
+    (r'^gl(Uniform|ProgramUniform)', None),
+    (r'^glPopAttrib$', 'XFORM RASTER FFP CURRENT'),
+    (r'^gl(LoadIdentity|(Load|Mult)(Transpose)?Matrix[fd](ARB)?|Rotate[fd]|Translate[fd]|Scale[fd]|Frustum|Ortho|'
+     r'PopMatrix|Viewport\w*|Matrix(Load|Mult|Rotate|Scale|Translate|Frustum|Ortho|Pop)\w*EXT)$', 'XFORM'),
+    (r'^gl(ShadeModel|PolygonMode|RenderMode|UseProgram|UseProgramObjectARB|BindProgramPipeline|'
+     r'ProvokingVertex(EXT)?|ClampColor(ARB)?|ActiveTexture(ARB)?)$', 'RASTER'),
+    (r'^gl(Light\w*|ColorMaterial|(Multi)?Tex(Env|Gen)\w*|Fog[fi]v?|Fogx\w*|BindTexture\w*|BindMultiTextureEXT|'
+     r'(Copy|Compressed)?(Multi)?Tex(ture)?Image\w*|Tex(ture)?Storage\w*|DeleteTextures\w*|Tex(ture)?Buffer\w*|'
+     r'BindProgramARB|ProgramStringARB|Enablei|Disablei|EnableIndexedEXT|DisableIndexedEXT)$', 'FFP'),
+    (r'^gl(BindVertexArray(APPLE)?|BindBuffer(ARB)?|ClientActiveTexture(ARB)?|Delete(Buffers|VertexArrays)\w*|'
+     r'PopClientAttrib)$', 'BIND'),
+    (r'^gl(Draw|MultiDraw)', 'CURRENT'),
+    (r'^gl', ''),
+]
 
 
-def add(name, params, body, ret='void', exported=True):
-    entries.append((ret, name, params, body, exported))
+def mask_of(name):
+    for pattern, groups in RULES:
+        if re.match(pattern, name):
+            if groups is None:
+                return None
+            bits = [GROUPS[g] for g in groups.split()]
+            return ' | '.join(bits) if bits else '0'
+    return '0'
 
 
-def scalar_and_vector(base, n, t, comps, call, pad, conv_kind, lead=()):
-    """The scalar and the v form of one attribute setter. call(args) gives the capture call
-    from a list of C float expressions; pad fills missing components."""
+# ---- the system's prototypes --------------------------------------------------------------
+
+def parse_protos(path):
+    text = open(path).read()
+    text = re.sub(r'__attribute__\s*\(\([^()]*(\([^()]*\))?[^()]*\)\)', ' ', text)
+    protos = {}
+    for decl in text.split(';'):
+        decl = ' '.join(decl.split())
+        if 'typedef' in decl:
+            continue
+        m = re.match(r'^(?:extern )?(.+?)\b(gl[A-Z]\w*)\s*\((.*)\)$', decl)
+        if not m or m.group(2) in protos:
+            continue
+        ret = m.group(1).strip()
+        params = []
+        raw = m.group(3).strip()
+        if raw and raw != 'void':
+            for k, p in enumerate(raw.split(',')):
+                p = p.strip()
+                pm = re.match(r'^(.*?)(\w+)((?:\[\d*\])*)$', p)
+                if not pm or not pm.group(1).strip() or pm.group(2) in ('GLenum', 'GLint', 'GLuint'):
+                    params.append((p, f'a{k}'))  # a type alone: name it
+                else:
+                    params.append((pm.group(1).strip() + pm.group(3), pm.group(2)))
+        protos[m.group(2)] = (ret, params)
+    return protos
+
+
+# ---- the entry points ------------------------------------------------------------------------
+
+entries = {}  # name -> (ret, params, body or None, kind); kind: 'hook', 'pass', 'manual', 'import'
+
+
+suffix_now = ''  # appended to the names hook_entry makes (the EXT and ARB copies)
+
+
+def hook_entry(name, params, hook_call):
+    entries[name + suffix_now] = ('void', params, hook_call, 'hook')
+
+
+def setter(base, n, t, comps, pad, norm, hook, lead=()):
+    """The scalar and the v form of one attribute or vertex setter; hook(lead names, float
+    expressions) gives the hook call."""
     ctype, cconv, pconv = TYPES[t]
-    conv = cconv if conv_kind == 'norm' else pconv
+    conv = cconv if norm else pconv
     names = comps[:n]
-    lead_params = list(lead)
     lead_names = [p[1] for p in lead]
-    params = lead_params + [(ctype, c) for c in names]
     vals = [conv.format(c) for c in names] + pad[n:]
-    add(f'{base}{n}{t}', params, call(lead_names, vals))
-    vparams = lead_params + [(f'const {ctype} *', 'v')]
+    hook_entry(f'{base}{n}{t}', list(lead) + [(ctype, c) for c in names], hook(lead_names, vals))
     vvals = [conv.format(f'v[{i}]') for i in range(n)] + pad[n:]
-    add(f'{base}{n}{t}v', vparams, call(lead_names, vvals))
+    hook_entry(f'{base}{n}{t}v', list(lead) + [(f'const {ctype} *', 'v')], hook(lead_names, vvals))
 
 
-def capture_call(fn):
-    return lambda lead, vals: f'{fn}(cx, {", ".join(list(lead) + vals)});'
+def attrib_hook(attr):
+    return lambda lead, vals: f'pl_hook_attrib(cx, {attr}, {", ".join(vals)})'
 
 
-# glVertex{2,3,4}{s,i,f,d}{,v}
+POS_PAD = ['0', '0', '0.0f', '1.0f']
+COLOR_PAD = ['0', '0', '0', '1.0f']
+TEX_PAD = ['0', '0.0f', '0.0f', '1.0f']
+
 for n in (2, 3, 4):
     for t in ('s', 'i', 'f', 'd'):
-        scalar_and_vector('glVertex', n, t, ['x', 'y', 'z', 'w'], capture_call('pl_cap_vertex'),
-                          ['0', '0', '0.0f', '1.0f'], 'plain')
-
-# glColor{3,4}{b,s,i,f,d,ub,us,ui}{,v}
+        setter('glVertex', n, t, ['x', 'y', 'z', 'w'], POS_PAD, False,
+               lambda lead, vals: f'pl_hook_vertex(cx, {", ".join(vals)})')
 for n in (3, 4):
     for t in ('b', 's', 'i', 'f', 'd', 'ub', 'us', 'ui'):
-        scalar_and_vector('glColor', n, t, ['red', 'green', 'blue', 'alpha'],
-                          capture_call('pl_cap_color'), ['0', '0', '0', '1.0f'], 'norm')
-
-# glSecondaryColor3{...}{,v} and the EXT names
-for suffix in ('', 'EXT'):
+        setter('glColor', n, t, ['red', 'green', 'blue', 'alpha'], COLOR_PAD, True, attrib_hook('QGL__AT_COLOR'))
+for suffix_now in ('', 'EXT'):
     for t in ('b', 's', 'i', 'f', 'd', 'ub', 'us', 'ui'):
-        before = len(entries)
-        scalar_and_vector('glSecondaryColor', 3, t, ['red', 'green', 'blue'],
-                          capture_call('pl_cap_secondary'), [], 'norm')
-        if suffix:
-            for k in range(before, len(entries)):
-                r, nm, p, b, e = entries[k]
-                entries[k] = (r, nm + suffix, p, b, e)
-
-# glNormal3{b,s,i,f,d}{,v}
+        setter('glSecondaryColor', 3, t, ['red', 'green', 'blue'], COLOR_PAD, True, attrib_hook('QGL__AT_COLOR2'))
+suffix_now = ''
 for t in ('b', 's', 'i', 'f', 'd'):
-    scalar_and_vector('glNormal', 3, t, ['nx', 'ny', 'nz'], capture_call('pl_cap_normal'), [], 'norm')
-
-# glTexCoord{1,2,3,4}{s,i,f,d}{,v}: unit 0
+    setter('glNormal', 3, t, ['nx', 'ny', 'nz'], ['0', '0', '0', '0.0f'], True, attrib_hook('QGL__AT_NORMAL'))
 for n in (1, 2, 3, 4):
     for t in ('s', 'i', 'f', 'd'):
-        scalar_and_vector('glTexCoord', n, t, ['s', 't', 'r', 'q'],
-                          lambda lead, vals: f'pl_cap_texcoord(cx, 0, {", ".join(vals)});',
-                          ['0', '0.0f', '0.0f', '1.0f'], 'plain')
-
-# glMultiTexCoord{1,2,3,4}{s,i,f,d}{,v} and the ARB names
-for suffix in ('', 'ARB'):
+        setter('glTexCoord', n, t, ['s', 't', 'r', 'q'], TEX_PAD, False,
+               lambda lead, vals: f'pl_hook_texcoord(cx, 0, {", ".join(vals)})')
+for suffix_now in ('', 'ARB'):
     for n in (1, 2, 3, 4):
         for t in ('s', 'i', 'f', 'd'):
-            before = len(entries)
-            scalar_and_vector('glMultiTexCoord', n, t, ['s', 't', 'r', 'q'],
-                              lambda lead, vals: f'pl_cap_texcoord(cx, {lead[0]} - GL_TEXTURE0, {", ".join(vals)});',
-                              ['0', '0.0f', '0.0f', '1.0f'], 'plain', lead=[('GLenum', 'target')])
-            if suffix:
-                for k in range(before, len(entries)):
-                    r, nm, p, b, e = entries[k]
-                    entries[k] = (r, nm + suffix, p, b, e)
+            setter('glMultiTexCoord', n, t, ['s', 't', 'r', 'q'], TEX_PAD, False,
+                   lambda lead, vals: f'pl_hook_texcoord(cx, {lead[0]} - GL_TEXTURE0, {", ".join(vals)})',
+                   lead=[('GLenum', 'target')])
+suffix_now = ''
+for suffix_now in ('', 'EXT'):
+    for t, ctype in (('f', 'GLfloat'), ('d', 'GLdouble')):
+        fog = attrib_hook('QGL__AT_FOG')
+        hook_entry(f'glFogCoord{t}', [(ctype, 'coord')], fog([], ['(float)coord', '0', '0', '0']))
+        hook_entry(f'glFogCoord{t}v', [(f'const {ctype} *', 'coord')], fog([], ['(float)coord[0]', '0', '0', '0']))
+suffix_now = ''
+hook_entry('glEdgeFlag', [('GLboolean', 'flag')], 'pl_hook_edgeflag(cx, flag)')
+hook_entry('glEdgeFlagv', [('const GLboolean *', 'flag')], 'pl_hook_edgeflag(cx, flag[0])')
 
-# glFogCoord{f,d}{,v} and EXT
-for suffix in ('', 'EXT'):
-    add(f'glFogCoordf{suffix}', [('GLfloat', 'coord')], 'pl_cap_fog(cx, coord);')
-    add(f'glFogCoordd{suffix}', [('GLdouble', 'coord')], 'pl_cap_fog(cx, (float)coord);')
-    add(f'glFogCoordfv{suffix}', [('const GLfloat *', 'coord')], 'pl_cap_fog(cx, coord[0]);')
-    add(f'glFogCoorddv{suffix}', [('const GLdouble *', 'coord')], 'pl_cap_fog(cx, (float)coord[0]);')
 
-add('glEdgeFlag', [('GLboolean', 'flag')], 'pl_cap_edgeflag(cx, flag);')
-add('glEdgeFlagv', [('const GLboolean *', 'flag')], 'pl_cap_edgeflag(cx, flag[0]);')
+# Generic attributes (glVertexAttrib*, and the ARB names): index 0 is the vertex itself.
+def generic(n, t, norm, name):
+    ctype, cconv, pconv = TYPES[t]
+    conv = cconv if norm else pconv
+    lead = [('GLuint', 'index')]
+    comps = ['x', 'y', 'z', 'w']
+    hook = f'pl_hook_generic(cx, index, {{}})'
+    if not name.endswith('v'):
+        vals = [conv.format(c) for c in comps[:n]] + POS_PAD[n:]
+        hook_entry(name, lead + [(ctype, c) for c in comps[:n]], hook.format(', '.join(vals)))
+    else:
+        vals = [conv.format(f'v[{i}]') for i in range(n)] + POS_PAD[n:]
+        hook_entry(name, lead + [(f'const {ctype} *', 'v')], hook.format(', '.join(vals)))
 
-add('glMaterialf', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLfloat', 'param')],
-    'pl_cap_material(cx, face, pname, &param);')
-add('glMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLfloat *', 'params')],
-    'pl_cap_material(cx, face, pname, params);')
-add('glMateriali', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLint', 'param')],
-    'pl_cap_materiali(cx, face, pname, &param);')
-add('glMaterialiv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLint *', 'params')],
-    'pl_cap_materiali(cx, face, pname, params);')
 
-add('glArrayElement', [('GLint', 'i')], 'pl_cap_array_element(cx, i);')
-add('glArrayElementEXT', [('GLint', 'i')], 'pl_cap_array_element(cx, i);')
+for suffix_now in ('', 'ARB'):
+    for n in (1, 2, 3, 4):
+        for t in ('s', 'f', 'd'):
+            generic(n, t, False, f'glVertexAttrib{n}{t}')
+            generic(n, t, False, f'glVertexAttrib{n}{t}v')
+    for t in ('b', 'i', 'ub', 'us', 'ui'):
+        generic(4, t, False, f'glVertexAttrib4{t}v')
+    for t in ('b', 's', 'i', 'ub', 'us', 'ui'):
+        generic(4, t, True, f'glVertexAttrib4N{t}v')
+    ctype = TYPES['ub'][0]
+    vals = [TYPES['ub'][1].format(c) for c in ('x', 'y', 'z', 'w')]
+    hook_entry('glVertexAttrib4Nub', [('GLuint', 'index')] + [(ctype, c) for c in ('x', 'y', 'z', 'w')],
+               f'pl_hook_generic(cx, index, {", ".join(vals)})')
+suffix_now = ''
 
-# Written by hand in C: slot and table row only.
-MANUAL = [
-    ('void', 'glBegin', [('GLenum', 'mode')]),
-    ('void', 'glEnd', []),
-    ('void', 'glNewList', [('GLuint', 'list'), ('GLenum', 'mode')]),
-    ('void', 'glEndList', []),
-    ('void', 'glCallList', [('GLuint', 'list')]),
-    ('void', 'glCallLists', [('GLsizei', 'n'), ('GLenum', 'type'), ('const void *', 'lists')]),
-    ('void', 'glDeleteLists', [('GLuint', 'list'), ('GLsizei', 'range')]),
-    ('void', 'glDrawArrays', [('GLenum', 'mode'), ('GLint', 'first'), ('GLsizei', 'count')]),
-    ('void', 'glDrawArraysEXT', [('GLenum', 'mode'), ('GLint', 'first'), ('GLsizei', 'count')]),
-    ('void', 'glDrawElements', [('GLenum', 'mode'), ('GLsizei', 'count'), ('GLenum', 'type'),
-                                ('const void *', 'indices')]),
-    ('void', 'glDrawRangeElements', [('GLenum', 'mode'), ('GLuint', 'start'), ('GLuint', 'end'),
-                                     ('GLsizei', 'count'), ('GLenum', 'type'), ('const void *', 'indices')]),
-    ('void', 'glDrawRangeElementsEXT', [('GLenum', 'mode'), ('GLuint', 'start'), ('GLuint', 'end'),
-                                        ('GLsizei', 'count'), ('GLenum', 'type'), ('const void *', 'indices')]),
-    ('void', 'glMultiDrawArrays', [('GLenum', 'mode'), ('const GLint *', 'first'),
-                                   ('const GLsizei *', 'count'), ('GLsizei', 'drawcount')]),
-    ('void', 'glMultiDrawArraysEXT', [('GLenum', 'mode'), ('const GLint *', 'first'),
-                                      ('const GLsizei *', 'count'), ('GLsizei', 'drawcount')]),
-    ('void', 'glMultiDrawElements', [('GLenum', 'mode'), ('const GLsizei *', 'count'), ('GLenum', 'type'),
-                                     ('const void *const *', 'indices'), ('GLsizei', 'drawcount')]),
-    ('void', 'glMultiDrawElementsEXT', [('GLenum', 'mode'), ('const GLsizei *', 'count'), ('GLenum', 'type'),
-                                        ('const void *const *', 'indices'), ('GLsizei', 'primcount')]),
-    ('void', 'glEvalMesh2', [('GLenum', 'mode'), ('GLint', 'i1'), ('GLint', 'i2'), ('GLint', 'j1'),
-                             ('GLint', 'j2')]),
-    ('void', 'glEvalCoord1f', [('GLfloat', 'u')]),
-    ('void', 'glEvalCoord1d', [('GLdouble', 'u')]),
-    ('void', 'glEvalCoord1fv', [('const GLfloat *', 'u')]),
-    ('void', 'glEvalCoord1dv', [('const GLdouble *', 'u')]),
-    ('void', 'glEvalCoord2f', [('GLfloat', 'u'), ('GLfloat', 'v')]),
-    ('void', 'glEvalCoord2d', [('GLdouble', 'u'), ('GLdouble', 'v')]),
-    ('void', 'glEvalCoord2fv', [('const GLfloat *', 'u')]),
-    ('void', 'glEvalCoord2dv', [('const GLdouble *', 'u')]),
-    ('void', 'glEvalPoint1', [('GLint', 'i')]),
-    ('void', 'glEvalPoint2', [('GLint', 'i'), ('GLint', 'j')]),
-]
-for ret, name, params in MANUAL:
-    add(name, params, None, ret)
+hook_entry('glMaterialf', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLfloat', 'param')],
+           'pl_hook_material(cx, face, pname, &param, NULL)')
+hook_entry('glMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLfloat *', 'params')],
+           'pl_hook_material(cx, face, pname, params, NULL)')
+hook_entry('glMateriali', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLint', 'param')],
+           'pl_hook_material(cx, face, pname, NULL, &param)')
+hook_entry('glMaterialiv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLint *', 'params')],
+           'pl_hook_material(cx, face, pname, NULL, params)')
+hook_entry('glArrayElement', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
+hook_entry('glArrayElementEXT', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
 
-# Called by the library, never exported.
-IMPORTS = [
-    ('void', 'glGetFloatv', [('GLenum', 'pname'), ('GLfloat *', 'data')]),
-    ('void', 'glGetIntegerv', [('GLenum', 'pname'), ('GLint *', 'data')]),
-    ('void', 'glGetPointerv', [('GLenum', 'pname'), ('void **', 'params')]),
-    ('GLboolean', 'glIsEnabled', [('GLenum', 'cap')]),
-    ('GLboolean', 'glIsList', [('GLuint', 'list')]),
-    ('void', 'glGetVertexAttribiv', [('GLuint', 'index'), ('GLenum', 'pname'), ('GLint *', 'params')]),
-    ('void', 'glGetMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLfloat *', 'params')]),
-    ('void', 'glActiveTexture', [('GLenum', 'texture')]),
-    ('void', 'glClientActiveTexture', [('GLenum', 'texture')]),
-    ('void', 'glBindBuffer', [('GLenum', 'target'), ('GLuint', 'buffer')]),
-    ('void', 'glGetBufferSubData', [('GLenum', 'target'), ('GLintptr', 'offset'), ('GLsizeiptr', 'size'),
-                                    ('void *', 'data')]),
-    ('void', 'glVertex4fv', [('const GLfloat *', 'v')]),
-    ('void', 'glColor4fv', [('const GLfloat *', 'v')]),
-    ('void', 'glSecondaryColor3fv', [('const GLfloat *', 'v')]),
-    ('void', 'glNormal3fv', [('const GLfloat *', 'v')]),
-    ('void', 'glMultiTexCoord4fv', [('GLenum', 'target'), ('const GLfloat *', 'v')]),
-    ('void', 'glFogCoordf', [('GLfloat', 'coord')]),
-    ('void', 'glEdgeFlag', [('GLboolean', 'flag')]),
-    ('void', 'glMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLfloat *', 'params')]),
-    ('void', 'glGetMapiv', [('GLenum', 'target'), ('GLenum', 'query'), ('GLint *', 'v')]),
-    ('void', 'glGetMapfv', [('GLenum', 'target'), ('GLenum', 'query'), ('GLfloat *', 'v')]),
-]
-
-# Slots are shared by name: an import that is also exported uses the exported one's slot.
-exported_names = {e[1] for e in entries}
-for ret, name, params in IMPORTS:
-    if name not in exported_names:
-        add(name, params, None, ret, exported=False)
+# Written by hand in C (their bodies live in capture.c, arrays.c, lists.c, eval.c, track.c).
+MANUAL = ['glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists', 'glDeleteLists',
+          'glDrawArrays', 'glDrawArraysEXT', 'glDrawElements', 'glDrawRangeElements', 'glDrawRangeElementsEXT',
+          'glMultiDrawArrays', 'glMultiDrawArraysEXT', 'glMultiDrawElements', 'glMultiDrawElementsEXT',
+          'glEvalMesh2', 'glEvalCoord1f', 'glEvalCoord1d', 'glEvalCoord1fv', 'glEvalCoord1dv', 'glEvalCoord2f',
+          'glEvalCoord2d', 'glEvalCoord2fv', 'glEvalCoord2dv', 'glEvalPoint1', 'glEvalPoint2',
+          'glEnable', 'glDisable']
 
 
 def proto(params):
-    return ', '.join(f'{t} {n}' if not t.endswith('*') else f'{t}{n}' for t, n in params) or 'void'
+    return ', '.join(t if n is None else (f'{t}{n}' if t.endswith('*') else f'{t} {n}')
+                     for t, n in params) or 'void'
+
+
+def proto_decl(params):
+    out = []
+    for t, n in params:
+        m = re.match(r'^(.*?)((?:\[\d*\])+)$', t)
+        if m:  # an array parameter: the name goes before the brackets
+            out.append(f'{m.group(1)} {n}{m.group(2)}')
+        else:
+            out.append(f'{t}{n}' if t.endswith('*') else f'{t} {n}')
+    return ', '.join(out) or 'void'
 
 
 def args(params):
     return ', '.join(n for _, n in params)
 
 
+def zero(ret):
+    return '' if ret == 'void' else ' 0'
+
+
 def main():
-    out_h, out_c = sys.argv[1], sys.argv[2]
+    protos = parse_protos(sys.argv[1])
+    out_h, out_c = sys.argv[2], sys.argv[3]
+    # The system's signature wins for the names it declares (its parameter types are exact).
+    for name in list(entries):
+        if name in protos and entries[name][3] == 'hook':
+            ret, params = protos[name]
+            if len(params) != len(entries[name][1]):
+                sys.exit(f'gen_entries.py: {name} has {len(params)} parameters in the headers')
+            entries[name] = (ret, [(t, n) for (t, _), (_, n) in zip(params, entries[name][1])],
+                             entries[name][2], 'hook')
+    for name in MANUAL:
+        if name not in protos:
+            sys.exit(f'gen_entries.py: the headers do not declare {name}')
+        ret, params = protos[name]
+        entries[name] = (ret, params, None, 'manual')
+    for name, (ret, params) in protos.items():
+        if name not in entries:
+            entries[name] = (ret, params, None, 'pass')
+    names = sorted(entries)
+
     h = ['/* Generated by gen_entries.py: the real-driver slots of the preload library. */',
          '#ifndef PL_ENTRIES_H', '#define PL_ENTRIES_H', '', 'enum pl_slot {']
-    for _, name, _, _, _ in entries:
-        h.append(f'    PL_{name},')
+    h += [f'    PL_{name},' for name in names]
     h += ['    PL_SLOT_COUNT', '};', '']
-    for ret, name, params, _, _ in entries:
-        h.append(f'typedef {ret} (*PFN_pl_{name})({proto(params)});')
+    for name in names:
+        ret, params, _, _ = entries[name]
+        h.append(f'typedef {ret} (*PFN_pl_{name})({proto_decl([(t, "") for t, _ in params]) if params else "void"});')
     h += ['', 'extern void *pl_real_slot[PL_SLOT_COUNT];',
           'extern void *const pl_none_slot[PL_SLOT_COUNT];',
           'extern const char *const pl_slot_name[PL_SLOT_COUNT];',
@@ -220,55 +275,48 @@ def main():
           '#define REAL(name) ((PFN_pl_##name)pl_real_slot[PL_##name])',
           '', '#endif', '']
 
-    c = ['/* Generated by gen_entries.py: lazy real-driver slots, exported capture wrappers and the',
-         ' * name table of the preload library. Do not edit. */',
-         '#include "preload.h"', '']
+    c = ['/* Generated by gen_entries.py: lazy real-driver slots, exported wrappers and the name',
+         ' * table of the preload library. Do not edit. */',
+         '#include "preload.h"', '',
+         '#pragma GCC diagnostic ignored "-Wunused-parameter"', '']
     c.append('const char *const pl_slot_name[PL_SLOT_COUNT] = {')
-    for _, name, _, _, _ in entries:
-        c.append(f'    "{name}",')
+    c += [f'    "{name}",' for name in names]
     c += ['};', '']
-    # Lazy stubs: resolve the slot, then call through it.
-    for ret, name, params, _, _ in entries:
+    for name in names:
+        ret, params, _, _ = entries[name]
         ret_kw = '' if ret == 'void' else 'return '
-        c.append(f'static {ret} pl_lazy_{name}({proto(params)})')
+        c += [f'static {ret} pl_lazy_{name}({proto_decl(params)})', '{',
+              f'    pl_resolve_slot(PL_{name});', f'    {ret_kw}REAL({name})({args(params)});', '}']
+        c += [f'static {ret} pl_none_{name}({proto_decl(params)})', '{', f'    return{zero(ret)};', '}']
+    c += ['', 'void *const pl_none_slot[PL_SLOT_COUNT] = {']
+    c += [f'    (void *)pl_none_{name},' for name in names]
+    c += ['};', '', 'void *pl_real_slot[PL_SLOT_COUNT] = {']
+    c += [f'    (void *)pl_lazy_{name},' for name in names]
+    c += ['};', '']
+    for name in names:
+        ret, params, body, kind = entries[name]
+        if kind == 'manual':
+            continue
+        ret_kw = '' if ret == 'void' else 'return '
+        c.append(f'PL_EXPORT {ret} {name}({proto_decl(params)})')
         c.append('{')
-        c.append(f'    pl_resolve_slot(PL_{name});')
+        if kind == 'hook':
+            c.append('    pl_ctx *cx = pl_tls_ctx;')
+            c.append(f'    if (PL_UNLIKELY(cx != NULL) && {body})')
+            c.append('        return;')
+        else:
+            mask = mask_of(name)
+            if mask is None:
+                c.append('    if (PL_UNLIKELY(pl_inside_capture()))')
+            else:
+                c.append(f'    if (PL_UNLIKELY(pl_touch({mask})))')
+            c.append(f'        return{zero(ret)};')
         c.append(f'    {ret_kw}REAL({name})({args(params)});')
         c.append('}')
-    # Stand-ins for functions no driver provides: do nothing, return zero.
-    for ret, name, params, _, _ in entries:
-        c.append(f'static {ret} pl_none_{name}({proto(params)})')
-        c.append('{')
-        c.append('    return' + ('' if ret == 'void' else ' 0') + ';')
-        c.append('}')
-    c += ['', 'void *const pl_none_slot[PL_SLOT_COUNT] = {']
-    for _, name, _, _, _ in entries:
-        c.append(f'    (void *)pl_none_{name},')
-    c += ['};', '']
-    c += ['', 'void *pl_real_slot[PL_SLOT_COUNT] = {']
-    for _, name, _, _, _ in entries:
-        c.append(f'    (void *)pl_lazy_{name},')
-    c += ['};', '']
-    # Exported wrappers.
-    for ret, name, params, body, exported in entries:
-        if body is None:
-            continue
-        c.append(f'PL_EXPORT void {name}({proto(params)})')
-        c.append('{')
-        c.append('    pl_ctx *cx = pl_capturing();')
-        c.append('    if (PL_LIKELY(cx == NULL)) {')
-        c.append(f'        REAL({name})({args(params)});')
-        c.append('        return;')
-        c.append('    }')
-        c.append(f'    {body}')
-        c.append('}')
         c.append('')
-    # Sorted name table of everything exported (for GetProcAddress and dlsym redirection).
-    rows = sorted((name for _, name, _, _, exported in entries if exported))
     c.append('const pl_proc pl_proc_table[] = {')
-    for name in rows:
-        c.append(f'    {{"{name}", (void *){name}}},')
-    c += ['};', f'const int pl_proc_count = {len(rows)};', '']
+    c += [f'    {{"{name}", (void *){name}}},' for name in names]
+    c += ['};', f'const int pl_proc_count = {len(names)};', '']
     with open(out_h, 'w') as f:
         f.write('\n'.join(h))
     with open(out_c, 'w') as f:

@@ -25,6 +25,7 @@ enum { PL_ITEM_SEGMENT, PL_ITEM_PRIM, PL_ITEM_CALL, PL_ITEM_CALLS };
 typedef struct pl_item {
     int kind;
     GLuint name;       /* segment: the driver's list; call: the list called */
+    unsigned mask;     /* segment: what its calls change (track.c's PL_D_*) */
     pl_prim prim;      /* PL_ITEM_PRIM */
     uint32_t *names;   /* PL_ITEM_CALLS: the names given, the base added when it runs */
     size_t count;
@@ -204,9 +205,21 @@ static pl_item *pl_list_push(pl_list *l, int kind, GLuint name)
     return it;
 }
 
+/* The open segment is the last segment item: it keeps what its calls changed. */
+static void pl_segment_mask(pl_ctx *x)
+{
+    pl_list *l = x->compiling;
+    for (size_t i = l->n; i-- > 0;)
+        if (l->items[i].kind == PL_ITEM_SEGMENT) {
+            l->items[i].mask |= x->seg_dirty;
+            break;
+        }
+    x->seg_dirty = 0;
+}
+
 void pl_list_segment_close(pl_ctx *x)
 {
-    (void)x;
+    pl_segment_mask(x);
     REAL(glEndList)();
 }
 
@@ -244,12 +257,6 @@ void pl_list_native_end(pl_ctx *x)
         REAL(glEndList)();
 }
 
-/* GL_INVALID_OPERATION from the driver, as a list command inside glBegin/glEnd gives. */
-static void pl_invalid_operation(void)
-{
-    REAL(glEnd)();
-}
-
 PL_EXPORT void glNewList(GLuint list, GLenum mode)
 {
     pl_ctx *x = pl_tls_ctx;
@@ -269,6 +276,8 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
     l->refs = 1;
     x->compiling = l;
     x->compile_mode = mode;
+    x->seg_dirty = 0;
+    pl_update_slow(x);
     REAL(glNewList)(list, mode);
     pl_list_push(l, PL_ITEM_SEGMENT, list);
 }
@@ -285,11 +294,13 @@ PL_EXPORT void glEndList(void)
         REAL(glEndList)();
         return;
     }
+    pl_segment_mask(x);
     REAL(glEndList)();
     l = x->compiling;
     x->compiling = NULL;
-    if (l->n <= 1) {
-        /* Nothing recorded: the driver's list is the whole list. */
+    pl_update_slow(x);
+    if (l->n <= 1 && !l->items[0].mask) {
+        /* Nothing recorded and nothing tracked changed: the driver's list is the whole list. */
         pl_share_set(x->share, l->name, NULL);
         pl_list_unref(l);
         return;
@@ -342,7 +353,12 @@ static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
     for (size_t i = 0; i < l->n; i++) {
         pl_item *it = &l->items[i];
         switch (it->kind) {
-        case PL_ITEM_SEGMENT: REAL(glCallList)(it->name); break;
+        case PL_ITEM_SEGMENT:
+            REAL(glCallList)(it->name);
+            x->dirty |= it->mask & PL_D_STATE;
+            if (it->mask & PL_D_CURRENT)
+                x->cur_known = 0;
+            break;
         case PL_ITEM_PRIM: pl_draw_listed(x, &it->prim); break;
         case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
         default: pl_exec_calls(x, it->names, it->count, depth + 1); break;

@@ -1,13 +1,16 @@
 /* preload.h: the internal interface of libquadgl-preload.so (never installed).
  *
- * The library sits between a legacy GL program and its driver. Exported gl* wrappers
- * (generated, pl_entries.c, and hand-written for glBegin, the draws and the lists) call the
- * real driver through lazily resolved slots (real.c). Quad primitives are captured into a
- * pl_prim: one pl_vertex per vertex holding every attribute the capture tracks, plus which
- * attributes were given and from which vertex on (capture.c, arrays.c). A finished primitive
- * is either drawn (draw.c: through the GL path, or replayed to the driver unchanged) or, while
- * a display list is being compiled, stored in our own list object (lists.c). All state is per
- * GL context (context.c), tracked through the window systems' MakeCurrent calls (winsys.c). */
+ * The library sits between a legacy GL program and its driver. It exports every GL entry
+ * point (generated, pl_entries.c, and hand-written for glBegin, the draws and the lists) and
+ * calls the real driver through lazily resolved slots (real.c). Every call passes a hook on
+ * its way: attribute and vertex calls are captured inside a captured quad primitive and
+ * otherwise update our copy of the current attributes; other calls mark which groups of the
+ * state the GL path reads they may change (track.c), so that the GL path asks the driver only
+ * for what changed. Quad primitives are captured into a pl_prim, one array per attribute in
+ * the GL path's own layout (capture.c, arrays.c). A finished primitive is drawn (draw.c:
+ * through the GL path, or replayed to the driver unchanged) or, while a display list is being
+ * compiled, stored in our own list object (lists.c). All state is per GL context (context.c),
+ * tracked through the window systems' MakeCurrent calls (winsys.c). */
 #ifndef QGL_PRELOAD_H
 #define QGL_PRELOAD_H
 
@@ -21,6 +24,7 @@
 #include <quadgl/quadgl.h>
 #include <quadgl/gl.h>
 
+#include "gl_internal.h"
 #include "pl_entries.h"
 
 #define PL_EXPORT __attribute__((visibility("default")))
@@ -67,47 +71,40 @@ extern const int pl_proc_count;
 void pl_resolve_slot(int slot);
 /* The driver's function for name, never one of ours; NULL when none exists. */
 void *pl_real_proc(const char *name);
-/* Our exported function for name (GL or window system), NULL when we do not handle it. */
+/* Our exported function for name (GL or window system), NULL when we do not handle it or the
+ * driver has no such function. */
 void *pl_own_proc(const char *name);
 /* The next definition of a window-system or libc symbol after ours. */
 void *pl_next_symbol(const char *name);
+/* Set when the program got a GL function that is not ours (winsys.c): calls to it go unseen. */
+extern int pl_untracked;
 /* The file name of this library (for dlopen redirection). */
 const char *pl_self_path(void);
 
 /* ---- captured primitives ------------------------------------------------------------------- */
 
-#define PL_TEXUNITS 4 /* = QGL_MAX_TEXUNITS of the GL path */
+typedef struct pl_ctx pl_ctx;
 
-/* Attribute indices: bit a of pl_prim.given. */
-enum { PL_A_COLOR, PL_A_SECONDARY, PL_A_NORMAL, PL_A_FOG, PL_A_TEX0, PL_A_COUNT = PL_A_TEX0 + PL_TEXUNITS };
-
-typedef struct pl_vertex {
-    float pos[4];
-    float color[4];
-    float secondary[4];
-    float tex[PL_TEXUNITS][4];
-    float normal[3];
-    float fog;
-} pl_vertex;
+#define PL_TEXUNITS QGL_MAX_TEXUNITS
+#define PL_GENERICS 16 /* generic attributes a primitive may give (replayed to the driver) */
 
 /* glMaterial given between glBegin and glEnd, applied before vertex `vertex`. */
-typedef struct pl_material {
-    uint32_t vertex;
-    GLenum face, pname;
-    float v[4];
-} pl_material;
+typedef qgl__change pl_material;
 
 typedef struct pl_prim {
     GLenum mode;             /* GL_QUADS or GL_QUAD_STRIP */
-    pl_vertex *v;
-    size_t n, cap;
-    pl_vertex cur;           /* the values given so far (the next vertex gets them) */
-    unsigned given;          /* bit per attribute given at least once */
-    uint32_t first[PL_A_COUNT]; /* vertex from which each given attribute is set; earlier
-                                   vertices take the context's current value at draw time */
+    qgl__verts v;            /* positions, and the attributes given (v.mask), edge flags too */
+    float cur[QGL__NATTR][4];/* the values given so far (the next vertex takes them) */
+    unsigned char cur_edge;
+    uint32_t first[QGL__NATTR + 1]; /* vertex from which each given attribute (and the edge
+                                flag, last) is set; earlier ones take the context's current
+                                value at draw time (in a list: when it runs) */
+    float *generic[PL_GENERICS]; /* 4 per vertex, only for the indices given */
+    float cur_generic[PL_GENERICS][4];
+    unsigned generic_given;
+    uint32_t generic_first[PL_GENERICS];
     pl_material *mat;
     size_t nmat, capmat;
-    int edge_off;            /* an edge flag was false: drawn by the driver itself */
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
     GLuint native_list;      /* in a display list: the driver's own compilation of the same
@@ -119,23 +116,30 @@ typedef struct pl_prim {
 void pl_prim_reset(pl_prim *p, GLenum mode);
 void pl_prim_free(pl_prim *p);
 int pl_prim_copy(pl_prim *dst, const pl_prim *src);
-int pl_prim_push(pl_prim *p);         /* appends p->cur as a vertex; 0 or -1 (no memory) */
 size_t pl_prim_quads(const pl_prim *p);
-/* Fills attribute a of the vertices before p->first[a] with the context's current value. */
-void pl_prim_backfill(pl_prim *p, int a);
-/* The context's current value of attribute a (up to 4 floats), and where a vertex keeps it. */
-void pl_read_current(int a, float *out);
-float *pl_attr_ptr(pl_vertex *v, int a);
-size_t pl_attr_size(int a);
+/* Fills the vertices before each given attribute's first one with the current value (a listed
+ * primitive keeps its first ones: the value is read anew each time the list runs). */
+void pl_prim_backfill(pl_ctx *x, pl_prim *p);
 
 /* ---- contexts (context.c) ---------------------------------------------------------------- */
 
 enum { PL_API_NONE = 0, PL_API_GLX, PL_API_EGL, PL_API_OSMESA };
 
+/* What a GL call may change (track.c): the GL path's state groups, and the preload's own copy
+ * of the current attributes. */
+enum {
+    PL_D_XFORM = QGL__D_XFORM,
+    PL_D_RASTER = QGL__D_RASTER,
+    PL_D_FFP = QGL__D_FFP,
+    PL_D_BIND = QGL__D_BIND,
+    PL_D_CURRENT = 1 << 8,
+    PL_D_STATE = QGL__D_ALL
+};
+
 typedef struct pl_share pl_share;
 typedef struct pl_list pl_list;
 
-typedef struct pl_ctx {
+struct pl_ctx {
     int api;
     void *handle;            /* the window system's context */
     pl_share *share;         /* display-list namespace */
@@ -143,24 +147,23 @@ typedef struct pl_ctx {
     int qgl_state;           /* 0 not tried, 1 made, -1 failed */
     int capturing;           /* inside a captured glBegin(GL_QUADS / GL_QUAD_STRIP) */
     int native_begin;        /* inside a glBegin forwarded to the driver */
+    int slow;                /* capturing or compiling: calls take the slow path of pl_touch */
+    unsigned dirty;          /* PL_D_STATE groups changed since the GL path last drew */
+    float cur[QGL__NATTR][4];/* the driver's current attributes as the calls left them */
+    unsigned char cur_edge;
+    unsigned cur_known;      /* attributes (and QGL__A_EDGE) whose value above is known */
     pl_prim prim;            /* the primitive being captured */
     pl_prim scratch;         /* vertex-array draws */
     pl_list *compiling;      /* the display list being compiled, or NULL */
     GLenum compile_mode;
+    unsigned seg_dirty;      /* while compiling: what the open segment's calls change */
     int list_depth;
     int bound;               /* threads it is current on (0 or 1) */
     int dead;                /* destroyed while current elsewhere: freed at release */
     struct pl_ctx *next;
-} pl_ctx;
+};
 
 extern __thread pl_ctx *pl_tls_ctx __attribute__((tls_model("initial-exec")));
-
-/* The context whose quad primitive is being captured on this thread, or NULL. */
-static inline pl_ctx *pl_capturing(void)
-{
-    pl_ctx *x = pl_tls_ctx;
-    return (x && x->capturing) ? x : NULL;
-}
 
 /* The current context of this thread; detects it through the window systems when no
  * MakeCurrent was seen (a program that resolved them past us). NULL when none. */
@@ -169,21 +172,119 @@ pl_ctx *pl_ctx_lookup(int api, void *handle, int create);
 void pl_ctx_created(int api, void *handle, int share_api, void *share_handle);
 void pl_ctx_bind(int api, void *handle);   /* this thread's current (NULL handle: none) */
 void pl_ctx_destroyed(int api, void *handle);
-qgl_context *pl_ctx_qgl(pl_ctx *x);        /* the GL path, created on first use */
+/* The GL path, created on first use, told what changed since it last drew. */
+qgl_context *pl_ctx_qgl(pl_ctx *x);
 void pl_stats_total(uint64_t out[5]);      /* quads, mvc, split, subdiv, passthrough */
+
+/* ---- tracking what calls change (track.c) ------------------------------------------------ */
+
+/* Capturing or compiling sends every call through pl_touch's slow path. */
+static inline void pl_update_slow(pl_ctx *x)
+{
+    x->slow = x->capturing || x->compiling != NULL;
+}
+
+/* The driver's entry points as the GL path's table (resolved once, for replays). */
+struct qgl__gl *pl_gl(void);
+
+/* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives. */
+void pl_invalid_operation(void);
+void pl_touch_slow(pl_ctx *x, unsigned mask);
+
+/* Every call that is not an attribute or a vertex: notes what it changes; returns 1 when the
+ * call must not reach the driver (it was made inside a captured glBegin/glEnd, where GL
+ * forbids it: the driver's error has been raised instead). */
+static inline int pl_touch(unsigned mask)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_LIKELY(x == NULL))
+        return 0;
+    x->dirty |= mask & PL_D_STATE;
+    if (mask & PL_D_CURRENT)
+        x->cur_known = 0;
+    if (PL_UNLIKELY(x->slow)) {
+        if (x->capturing) {
+            pl_invalid_operation();
+            return 1;
+        }
+        pl_touch_slow(x, mask);
+    }
+    return 0;
+}
+
+/* A pure query: only its place inside a captured glBegin/glEnd matters. */
+static inline int pl_inside_capture(void)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_LIKELY(x == NULL || !x->capturing))
+        return 0;
+    pl_invalid_operation();
+    return 1;
+}
+
+/* The current value of attribute a (QGL__AT_*; 4 floats), asked of the driver if unknown. */
+void pl_current_value(pl_ctx *x, int a, float out[4]);
+GLboolean pl_current_edge(pl_ctx *x);
+/* The driver's current value of a changes to v (not while only compiling a list). */
+static inline void pl_note_current(pl_ctx *x, int a, const float v[4])
+{
+    if (PL_UNLIKELY(x->compiling)) {
+        x->seg_dirty |= PL_D_CURRENT;
+        if (x->compile_mode == GL_COMPILE)
+            return;
+    }
+    float *c = x->cur[a];
+    c[0] = v[0], c[1] = v[1], c[2] = v[2], c[3] = v[3];
+    x->cur_known |= 1u << a;
+}
 
 /* ---- capture (capture.c, arrays.c) -------------------------------------------------------- */
 
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d);
-void pl_cap_color(pl_ctx *x, float r, float g, float b, float a);
-void pl_cap_secondary(pl_ctx *x, float r, float g, float b);
-void pl_cap_normal(pl_ctx *x, float a, float b, float c);
+void pl_cap_attrib(pl_ctx *x, int a, float s, float t, float r, float q);
 void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q);
-void pl_cap_fog(pl_ctx *x, float f);
 void pl_cap_edgeflag(pl_ctx *x, GLboolean flag);
-void pl_cap_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *params);
-void pl_cap_materiali(pl_ctx *x, GLenum face, GLenum pname, const GLint *params);
+void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
 void pl_cap_array_element(pl_ctx *x, GLint i);
+
+/* The hooks of the generated attribute and vertex wrappers: 1 when the call was captured (it
+ * must not reach the driver), 0 when it goes on to the driver. */
+static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
+{
+    if (x->capturing) {
+        pl_cap_attrib(x, a, s, t, r, q);
+        return 1;
+    }
+    const float v[4] = {s, t, r, q};
+    pl_note_current(x, a, v);
+    return 0;
+}
+
+static inline int pl_hook_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
+{
+    if (x->capturing) {
+        pl_cap_texcoord(x, unit, s, t, r, q);
+        return 1;
+    }
+    if (unit < PL_TEXUNITS) {
+        const float v[4] = {s, t, r, q};
+        pl_note_current(x, QGL__AT_TEX0 + (int)unit, v);
+    }
+    return 0;
+}
+
+static inline int pl_hook_vertex(pl_ctx *x, float a, float b, float c, float d)
+{
+    if (!x->capturing)
+        return 0;
+    pl_cap_vertex(x, a, b, c, d);
+    return 1;
+}
+
+int pl_hook_edgeflag(pl_ctx *x, GLboolean flag);
+int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv);
+int pl_hook_array_element(pl_ctx *x, GLint i);
 
 /* Fills p with the vertices of an array draw (type 0: first .. first + count - 1, else count
  * indices of that type).
@@ -198,9 +299,9 @@ int pl_arrays_capture(pl_ctx *x, pl_prim *p, GLenum mode, GLint first, GLsizei c
  * vertex from the current values, draws, and leaves the current attributes as GL would. */
 void pl_draw_prim(pl_ctx *x, pl_prim *p);
 /* Sets the current attributes to the last values given in p (what glEnd leaves behind). */
-void pl_prim_apply_current(const pl_prim *p);
+void pl_prim_apply_current(pl_ctx *x, const pl_prim *p);
 /* The calls that draw p in the driver (glBegin, attributes, vertices, glEnd, materials). */
-void pl_prim_emit(const pl_prim *p);
+void pl_prim_emit(pl_ctx *x, const pl_prim *p);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
 /* Draws a primitive recorded in a display list (its retained copy when it has one). */

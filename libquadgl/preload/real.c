@@ -16,6 +16,8 @@
 
 static const char pl_self_marker = 0;
 
+int pl_untracked;
+
 /* The base address of this library, to recognise our own functions. */
 static void *pl_self_base(void)
 {
@@ -126,8 +128,8 @@ void *pl_own_proc(const char *name)
     if (!name)
         return NULL;
     p = bsearch(name, pl_proc_table, (size_t)pl_proc_count, sizeof *p, pl_proc_cmp);
-    if (p)
-        return p->fn;
+    if (p) /* only for functions the driver has: a program may test for them */
+        return pl_real_slot[p - pl_proc_table] != pl_none_slot[p - pl_proc_table] && pl_real_proc(name) ? p->fn : NULL;
     for (int i = 0; i < pl_winsys_count; i++)
         if (strcmp(name, pl_winsys_table[i].name) == 0)
             return pl_winsys_table[i].fn;

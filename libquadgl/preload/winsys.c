@@ -94,13 +94,21 @@ PL_EXPORT void glXDestroyContext(void *dpy, void *ctx)
         real_fn(dpy, ctx);
 }
 
+/* A GL function the program gets past us could change any state: from then on the GL path
+ * reads all of it at every draw. */
 static pl_voidfn pl_getproc_via(const char *real_name, const char *name)
 {
     pl_getproc real_fn = (pl_getproc)pl_next_symbol(real_name);
     void *own = pl_own_proc(name);
+    pl_voidfn fn;
     if (own)
         return (pl_voidfn)own;
-    return real_fn ? real_fn(name) : NULL;
+    fn = real_fn ? real_fn(name) : NULL;
+    if (fn && name && name[0] == 'g' && name[1] == 'l' && !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)) {
+        __atomic_store_n(&pl_untracked, 1, __ATOMIC_RELAXED);
+        pl_log(PL_LOG_INFO, "%s is not one of ours: the state is read at every draw", name);
+    }
+    return fn;
 }
 
 PL_EXPORT pl_voidfn glXGetProcAddressARB(const GLubyte *name)
