@@ -845,6 +845,14 @@ static void replay(qgl_context *ctx, GLenum mode, const qgl__verts *v, size_t fi
     ctx->stats.draws++;
 }
 
+void qgl__replay_prim(qgl_context *ctx, GLenum mode, const qgl__verts *v, const qgl__change *chg, size_t nchg)
+{
+    ctx->chg = chg, ctx->nchg = nchg, ctx->chg_next = 0, ctx->chg_verts = v;
+    replay(ctx, mode, v, 0, v->n);
+    apply_changes(ctx, SIZE_MAX);
+    ctx->nchg = 0;
+}
+
 /* Without VAOs we cannot stream arrays without touching the application's client state, so
  * the driver gets the vertices as immediate calls (split, pass-through, subdivision). */
 static void draw_replay(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
@@ -938,20 +946,30 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
 /* A retained batch the driver can draw as the application would, when this state plans every
  * quad the driver's way (polygon mode line/point, select/feedback, method SPLIT, or the split
  * exact for all); counted as that path. */
+int qgl__native_path(qgl_context *ctx, const qgl__state *st, unsigned all_facts)
+{
+    if (st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL)
+        return QGL__P_PASS;
+    if (ctx->method == QGL_METHOD_SPLIT ||
+        (ctx->method == QGL_METHOD_AUTO && exact_by_facts(st, needed_facts(st), all_facts)))
+        return QGL__P_SPLIT;
+    return -1;
+}
+
+void qgl__count_path(qgl_context *ctx, unsigned char path, size_t nq)
+{
+    count(ctx, path, nq);
+}
+
 static int draw_natively(qgl_context *ctx, const qgl__state *st, const qgl__facts *facts, size_t nq)
 {
-    unsigned char path;
     if (!facts || !facts->native)
         return 0;
-    if (st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL)
-        path = QGL__P_PASS;
-    else if (ctx->method == QGL_METHOD_SPLIT ||
-             (ctx->method == QGL_METHOD_AUTO && exact_by_facts(st, needed_facts(st), facts->all)))
-        path = QGL__P_SPLIT;
-    else
+    int path = qgl__native_path(ctx, st, facts->all);
+    if (path < 0)
         return 0;
     ctx->stats.quads += nq;
-    count(ctx, path, nq);
+    count(ctx, (unsigned char)path, nq);
     ctx->stats.draws++;
     facts->native(facts->user);
     return 1;

@@ -148,7 +148,8 @@
     X(void, GetBufferSubData, (GLenum, GLintptr, GLsizeiptr, void *)) \
     X(void, BufferStorage, (GLenum, GLsizeiptr, const void *, GLbitfield)) \
     X(void *, MapBufferRange, (GLenum, GLintptr, GLsizeiptr, GLbitfield)) \
-    X(GLboolean, UnmapBuffer, (GLenum))
+    X(GLboolean, UnmapBuffer, (GLenum)) \
+    X(void, MultiDrawArrays, (GLenum, const GLint *, const GLsizei *, GLsizei))
 
 #define QGL__MEMBER(ret, name, params) ret (*name) params;
 struct qgl__gl {
@@ -432,6 +433,9 @@ struct qgl_context {
     const qgl__change *chg;   /* the drawing batch's material changes, the next one due */
     size_t nchg, chg_next;
     const qgl__verts *chg_verts;
+    GLint *multi_first;       /* mesh.c: glMultiDrawArrays' arguments */
+    GLsizei *multi_count;
+    size_t multi_cap, multi_cap2;
     qgl__state state;         /* the state of the last draw (state.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
@@ -493,6 +497,49 @@ size_t qgl__nquads(qgl_topology topo, size_t n);
 size_t qgl__corner(qgl_topology topo, size_t q, int c);
 /* The corner flat shading takes its colour from; st the draw's state, or NULL to ask the driver. */
 int qgl__flat_corner(qgl_context *ctx, const qgl__state *st, qgl_topology topo);
+
+/* draw.c: the path every quad of a batch takes without planning, given the conjunction of
+ * its facts (QGL__P_SPLIT or QGL__P_PASS), or -1 when the quads must be planned; counting. */
+int qgl__native_path(qgl_context *ctx, const qgl__state *st, unsigned all_facts);
+void qgl__count_path(qgl_context *ctx, unsigned char path, size_t nq);
+/* draw.c: v drawn by the driver's immediate mode as one primitive, glMaterial calls inline. */
+void qgl__replay_prim(qgl_context *ctx, GLenum mode, const qgl__verts *v, const qgl__change *chg, size_t nchg);
+
+/* mesh.c: a display list's primitives of any mode, drawn many times (see there). */
+typedef struct qgl__mesh_prim {
+    GLenum mode;
+    uint32_t first, count;    /* vertices of the mesh */
+    uint32_t chg0, nchg;      /* its glMaterial calls (vertex indices of the mesh) */
+    uint32_t facts0;          /* its first quad's facts */
+    uint32_t idx0;            /* GL_QUADS: its first triangle index in the buffer */
+} qgl__mesh_prim;
+
+typedef struct qgl__mesh {
+    qgl__verts v;             /* every vertex, in order */
+    qgl__mesh_prim *prim;
+    size_t nprim, capprim;
+    qgl__change *chg;
+    size_t nchg, capchg;
+    uint16_t *facts;          /* per quad of the quad primitives */
+    uint16_t *pfacts;         /* per primitive: the conjunction of its quads' */
+    size_t nquads;
+    int generic;              /* generic attributes given: only the driver's immediate mode */
+    GLuint bo;                /* the vertices in a buffer object of the share group of owner */
+    const void *owner;
+    int stale;                /* the vertices changed since they were put in bo */
+    size_t off_pos, off[QGL__NATTR], off_edge, off_idx;
+} qgl__mesh;
+
+int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg);
+/* After the last primitive: the facts. 0 without memory. */
+int qgl__mesh_finish(qgl__mesh *m);
+/* Vertex values changed (a current value the mesh takes from the state). */
+void qgl__mesh_changed(qgl__mesh *m);
+/* Draws m (owner: the share group its buffer may live in); the quads drawn, or -1 when the
+ * driver's immediate mode must draw it (no vertex array objects, generic attributes). */
+int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner);
+/* Frees m; its buffer too when a context of its share group (owner) is current (gl non-NULL). */
+void qgl__mesh_free(struct qgl__gl *gl, const void *owner, qgl__mesh *m);
 
 /* shader.c: the program for a key (NULL: plain smooth colour), built on first use; 0 when
  * it cannot be built (a warning is logged once). */

@@ -164,15 +164,6 @@ static int pl_quad_mode(GLenum mode)
     return mode == GL_QUADS || mode == GL_QUAD_STRIP;
 }
 
-/* The driver's own draw call for the arrays. */
-static void pl_array_draw_native(GLenum mode, GLint first, GLsizei count, GLenum type, const void *indices)
-{
-    if (type)
-        REAL(glDrawElements)(mode, count, type, indices);
-    else
-        REAL(glDrawArrays)(mode, first, count);
-}
-
 /* A quad draw from arrays, captured and drawn or recorded; -1 leaves it to the driver. */
 static int pl_array_draw(GLenum mode, GLint first, GLsizei count, GLenum type, const void *indices)
 {
@@ -182,14 +173,11 @@ static int pl_array_draw(GLenum mode, GLint first, GLsizei count, GLenum type, c
         x = pl_current();
     if (!x || !pl_cfg.capture || x->capturing || x->native_begin)
         return -1;
-    if (x->compiling)
-        pl_list_segment_close(x);
     rc = pl_arrays_capture(x, &x->scratch, mode, first, count, type, indices);
+    if (rc != 0 && x->compiling)
+        pl_list_state(x); /* the driver compiles the call */
     if (rc == 0 && x->compiling) {
-        pl_list_record_prim(x, &x->scratch);
-        pl_list_native_begin(x);
-        pl_array_draw_native(mode, first, count, type, indices);
-        pl_list_native_end(x);
+        pl_list_add_prim(x, &x->scratch);
         if (x->compile_mode == GL_COMPILE_AND_EXECUTE)
             pl_draw_prim(x, &x->scratch);
     } else if (rc == 0 && pl_prim_for_driver(x, &x->scratch)) {
@@ -199,51 +187,50 @@ static int pl_array_draw(GLenum mode, GLint first, GLsizei count, GLenum type, c
     } else if (rc == 0) {
         pl_draw_prim(x, &x->scratch);
     }
-    if (x->compiling)
-        pl_list_segment_open(x);
     return rc;
 }
 
 PL_EXPORT void glDrawArrays(GLenum mode, GLint first, GLsizei count)
 {
-    if (PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, first, count, 0, NULL) != 0)
+    if ((PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, first, count, 0, NULL) != 0) && !pl_touch(PL_D_CURRENT))
         REAL(glDrawArrays)(mode, first, count);
 }
 
 PL_EXPORT void glDrawArraysEXT(GLenum mode, GLint first, GLsizei count)
 {
-    if (PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, first, count, 0, NULL) != 0)
+    if ((PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, first, count, 0, NULL) != 0) && !pl_touch(PL_D_CURRENT))
         REAL(glDrawArraysEXT)(mode, first, count);
 }
 
 PL_EXPORT void glDrawElements(GLenum mode, GLsizei count, GLenum type, const void *indices)
 {
-    if (PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0)
+    if ((PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0) && !pl_touch(PL_D_CURRENT))
         REAL(glDrawElements)(mode, count, type, indices);
 }
 
 PL_EXPORT void glDrawRangeElements(GLenum mode, GLuint start, GLuint end, GLsizei count, GLenum type,
                                    const void *indices)
 {
-    if (PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0)
+    if ((PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0) && !pl_touch(PL_D_CURRENT))
         REAL(glDrawRangeElements)(mode, start, end, count, type, indices);
 }
 
 PL_EXPORT void glDrawRangeElementsEXT(GLenum mode, GLuint start, GLuint end, GLsizei count, GLenum type,
                                       const void *indices)
 {
-    if (PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0)
+    if ((PL_LIKELY(!pl_quad_mode(mode)) || pl_array_draw(mode, 0, count, type, indices) != 0) && !pl_touch(PL_D_CURRENT))
         REAL(glDrawRangeElementsEXT)(mode, start, end, count, type, indices);
 }
 
 PL_EXPORT void glMultiDrawArrays(GLenum mode, const GLint *first, const GLsizei *count, GLsizei drawcount)
 {
     if (PL_LIKELY(!pl_quad_mode(mode)) || drawcount < 0) {
-        REAL(glMultiDrawArrays)(mode, first, count, drawcount);
+        if (!pl_touch(PL_D_CURRENT))
+            REAL(glMultiDrawArrays)(mode, first, count, drawcount);
         return;
     }
     for (GLsizei i = 0; i < drawcount; i++)
-        if (count[i] > 0 && pl_array_draw(mode, first[i], count[i], 0, NULL) != 0)
+        if (count[i] > 0 && pl_array_draw(mode, first[i], count[i], 0, NULL) != 0 && !pl_touch(PL_D_CURRENT))
             REAL(glDrawArrays)(mode, first[i], count[i]);
 }
 
@@ -256,11 +243,12 @@ PL_EXPORT void glMultiDrawElements(GLenum mode, const GLsizei *count, GLenum typ
                                    GLsizei drawcount)
 {
     if (PL_LIKELY(!pl_quad_mode(mode)) || drawcount < 0) {
-        REAL(glMultiDrawElements)(mode, count, type, indices, drawcount);
+        if (!pl_touch(PL_D_CURRENT))
+            REAL(glMultiDrawElements)(mode, count, type, indices, drawcount);
         return;
     }
     for (GLsizei i = 0; i < drawcount; i++)
-        if (count[i] > 0 && pl_array_draw(mode, 0, count[i], type, indices[i]) != 0)
+        if (count[i] > 0 && pl_array_draw(mode, 0, count[i], type, indices[i]) != 0 && !pl_touch(PL_D_CURRENT))
             REAL(glDrawElements)(mode, count[i], type, indices[i]);
 }
 

@@ -31,15 +31,12 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->nmat = 0;
     p->lost = 0;
     p->from_arrays = 0;
-    p->native_list = 0;
-    p->retained = NULL;
     memset(p->first, 0, sizeof p->first);
     p->cur_edge = GL_TRUE;
 }
 
 void pl_prim_free(pl_prim *p)
 {
-    pl_retained_free(p->retained);
     qgl__verts_free(&p->v);
     for (int g = 0; g < PL_GENERICS; g++)
         free(p->generic[g]);
@@ -69,7 +66,6 @@ int pl_prim_copy(pl_prim *dst, const pl_prim *src)
     *dst = *src;
     memset(&dst->v, 0, sizeof dst->v);
     memset(dst->generic, 0, sizeof dst->generic);
-    dst->retained = NULL;
     dst->mat = NULL;
     dst->capmat = src->nmat;
     if (pl_prim_reserve(dst, n ? n : 1, src->v.mask) != 0 ||
@@ -185,8 +181,12 @@ int pl_hook_edgeflag(pl_ctx *x, GLboolean flag)
         pl_cap_edgeflag(x, flag);
         return 1;
     }
-    if (x->compiling)
-        x->seg_dirty |= PL_D_CURRENT;
+    if (x->compiling) {
+        const float v[4] = {flag ? 1.0f : 0.0f, 0, 0, 0};
+        pl_list_attrib(x, QGL__NATTR, v);
+        if (x->compile_mode == GL_COMPILE)
+            return 1;
+    }
     if (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE) {
         x->cur_edge = flag ? GL_TRUE : GL_FALSE;
         x->cur_known |= QGL__A_EDGE;
@@ -224,8 +224,11 @@ void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
 
 int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
 {
-    if (!x->capturing)
+    if (!x->capturing) {
+        if (x->compiling)
+            pl_list_state(x);
         return 0;
+    }
     pl_cap_generic(x, index, s, t, r, q);
     return 1;
 }
@@ -266,8 +269,11 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
 {
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
-    if (!x->capturing)
+    if (!x->capturing) {
+        if (x->compiling)
+            pl_list_state(x);
         return 0;
+    }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
     for (int i = 0; i < n; i++)
@@ -283,8 +289,10 @@ int pl_hook_array_element(pl_ctx *x, GLint i)
         return 1;
     }
     x->cur_known = 0; /* its attributes become the current ones */
-    if (x->compiling)
+    if (x->compiling) {
+        pl_list_state(x);
         x->seg_dirty |= PL_D_CURRENT;
+    }
     return 0;
 }
 
@@ -357,14 +365,15 @@ PL_EXPORT void glBegin(GLenum mode)
         pl_invalid_operation();
         return;
     }
-    if (!quad || x->native_begin) {
+    /* In a list every primitive is ours (the list's geometry); outside, only quads. */
+    if ((!quad && !(x->compiling && pl_valid_mode(mode))) || x->native_begin) {
+        if (x->compiling)
+            pl_list_state(x);
         if (!x->native_begin && pl_valid_mode(mode))
             x->native_begin = 1;
         REAL(glBegin)(mode);
         return;
     }
-    if (x->compiling)
-        pl_list_segment_close(x);
     pl_prim_reset(&x->prim, mode);
     x->capturing = 1;
     pl_update_slow(x);
@@ -392,14 +401,14 @@ PL_EXPORT void glEnd(void)
     x->capturing = 0;
     pl_update_slow(x);
     if (x->compiling) {
-        pl_list_record_prim(x, &x->prim);
-        pl_list_native_begin(x);
-        pl_prim_emit(x, &x->prim);
-        pl_list_native_end(x);
-        if (x->compile_mode == GL_COMPILE_AND_EXECUTE)
-            pl_draw_prim(x, &x->prim);
-        pl_note_prim_current(x, &x->prim);
-        pl_list_segment_open(x);
+        pl_list_add_prim(x, &x->prim);
+        if (x->compile_mode == GL_COMPILE_AND_EXECUTE) {
+            if (x->prim.mode == GL_QUADS || x->prim.mode == GL_QUAD_STRIP)
+                pl_draw_prim(x, &x->prim);
+            else
+                pl_prim_emit(x, &x->prim);
+            pl_note_prim_current(x, &x->prim);
+        }
         return;
     }
     pl_draw_prim(x, &x->prim);

@@ -10,12 +10,8 @@
  * would have seen: glBegin, the attributes given per vertex (edge flags and generic
  * attributes included), glVertex4fv, glEnd. Either way the current attributes end as GL
  * leaves them: the last values given inside glBegin/glEnd, or for an array draw (and an
- * evaluator mesh) the values from before it. A primitive recorded in a display list is
- * retained by the GL path at its first draw (qgl_gl_retain: its per-quad plan worked out once)
- * with the driver's own compilation of its calls as the native way to draw it; each later
- * draw only reads the state, and when that splits every quad exactly the driver's list runs
- * and nothing else. Vertices that take a current value (an attribute first given after them)
- * are filled at the first draw; if that value differs later, the plain path draws. */
+ * evaluator mesh) the values from before it. (Display lists keep their geometry as meshes of
+ * the GL layer: lists.c.) */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -87,16 +83,11 @@ void pl_prim_emit(pl_ctx *x, const pl_prim *p)
         pl_prim_apply_current(x, p);
 }
 
-/* The driver draws p: from the list compiled with it when there is one, else from its calls;
- * an array draw's replay puts the current attributes back (they were not its to change). */
+/* The driver draws p from its calls; an array draw's replay puts the current attributes back (they were not its to change). */
 static void pl_replay(pl_ctx *x, pl_prim *p)
 {
     float saved[QGL__NATTR][4];
     pl_count_passthrough(pl_prim_quads(p));
-    if (p->native_list) {
-        REAL(glCallList)(p->native_list);
-        return;
-    }
     if (p->from_arrays)
         for (int a = 0; a < QGL__NATTR; a++)
             if (p->v.mask & (1u << a))
@@ -129,95 +120,6 @@ static void pl_draw_gl(qgl_context *qgl, pl_prim *p)
     }
 }
 
-/* A listed primitive's retained copy, and the current values its backfilled vertices (those
- * before an attribute was first given) took when it was made. */
-struct pl_retained {
-    qgl_retained *r;
-    float backfilled[QGL__NATTR][4];
-};
-
-static void pl_call_native(void *list)
-{
-    REAL(glCallList)((GLuint)(uintptr_t)list);
-}
-
-static int pl_backfill_changed(pl_ctx *x, const pl_prim *p, const struct pl_retained *r)
-{
-    for (int a = 0; a < QGL__NATTR; a++)
-        if ((p->v.mask & (1u << a)) && p->first[a] > 0) {
-            float now[4];
-            pl_current_value(x, a, now);
-            if (memcmp(now, r->backfilled[a], (size_t)qgl__attribs[a].floats * sizeof(float)) != 0)
-                return 1;
-        }
-    return 0;
-}
-
-static void pl_attrib(qgl_attrib *out, const float *ptr, int size)
-{
-    out->ptr = ptr;
-    out->size = size;
-    out->type = GL_FLOAT;
-    out->stride = 0;
-}
-
-static struct pl_retained *pl_retain(pl_ctx *x, const pl_prim *p)
-{
-    struct pl_retained *r = calloc(1, sizeof *r);
-    qgl_retain_desc desc = {pl_call_native, (void *)(uintptr_t)p->native_list};
-    qgl_quad_batch b;
-    const qgl__verts *v = &p->v;
-    if (!r)
-        return NULL;
-    memset(&b, 0, sizeof b);
-    b.topology = pl_topology(p);
-    b.count = (int)v->n;
-    pl_attrib(&b.position, v->pos, 4);
-    if (v->mask & QGL__A_COLOR)
-        pl_attrib(&b.color, v->col, 4);
-    if (v->mask & QGL__A_COLOR2)
-        pl_attrib(&b.secondary_color, v->col2, 3);
-    if (v->mask & QGL__A_NORMAL)
-        pl_attrib(&b.normal, v->nrm, 3);
-    if (v->mask & QGL__A_FOG)
-        pl_attrib(&b.fog_coord, v->fog, 1);
-    for (int u = 0; u < PL_TEXUNITS; u++)
-        if (v->mask & (QGL__A_TEX0 << u))
-            pl_attrib(&b.texcoord[u], v->tex[u], 4);
-    for (int a = 0; a < QGL__NATTR; a++)
-        if ((v->mask & (1u << a)) && p->first[a] > 0)
-            pl_current_value(x, a, r->backfilled[a]);
-    if (!(r->r = qgl_gl_retain(&b, &desc))) {
-        free(r);
-        return NULL;
-    }
-    return r;
-}
-
-/* The retained copy of p that matches its vertices as backfilled now; made on first use (a
- * list may run on several threads: the first copy installed wins). NULL when the backfilled
- * values changed since (the plain path draws) or on failure. */
-static struct pl_retained *pl_retained_get(pl_ctx *x, pl_prim *p)
-{
-    struct pl_retained *r = __atomic_load_n(&p->retained, __ATOMIC_ACQUIRE), *none = NULL;
-    if (!r) {
-        if (!(r = pl_retain(x, p)))
-            return NULL;
-        if (!__atomic_compare_exchange_n(&p->retained, &none, r, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
-            pl_retained_free(r);
-            r = none;
-        }
-    }
-    return pl_backfill_changed(x, p, r) ? NULL : r;
-}
-
-void pl_retained_free(struct pl_retained *r)
-{
-    if (r)
-        qgl_gl_release(r->r);
-    free(r);
-}
-
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p)
 {
     qgl_context *qgl;
@@ -236,18 +138,4 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
         return;
     }
     pl_replay(x, p);
-}
-
-void pl_draw_listed(pl_ctx *x, pl_prim *p)
-{
-    struct pl_retained *r;
-    if (p->native_list && !p->nmat && p->v.n && !p->generic_given && !pl_prim_for_driver(x, p)) {
-        pl_prim_backfill(x, p);
-        if ((r = pl_retained_get(x, p)) && qgl_gl_draw_retained(pl_ctx_qgl(x), r->r) >= 0) {
-            if (!p->from_arrays)
-                pl_prim_apply_current(x, p);
-            return;
-        }
-    }
-    pl_draw_prim(x, p);
 }

@@ -1,17 +1,26 @@
-/* lists.c: display lists that hold quads (glNewList ... glEndList, glCallList(s)).
+/* lists.c: display lists (glNewList ... glEndList, glCallList(s)), with their geometry kept by us.
  *
- * The driver keeps compiling everything it always compiled; we only cut its list into
- * segments around what we must see at execution time. glNewList(n) starts the driver's
- * list n as the first segment. A captured quad primitive, an array draw of quads or a
- * glCallList(s) ends the current segment, is recorded in our own list object for n, and a
- * fresh driver list (a private name far above the ones programs use) takes the calls that
- * follow. So our object for n reads: segment, quads, segment, call m, segment, ... and
- * glCallList(n) replays it in order: the driver runs each segment (state changes, other
- * primitives, everything), we draw the quads in the state those segments left, and nested
- * lists are looked up when they run, as GL resolves them. A list in which we recorded
- * nothing gets no object: the driver's list n is complete and glCallList(n) goes straight
- * to it. Objects live in the share group of the contexts (a sorted array by name under a
- * mutex) and are reference counted while they run. */
+ * While a list is compiled, its calls are cut into items. Geometry (every glBegin/glEnd
+ * primitive of any mode, quad draws from arrays, and the attribute calls between primitives)
+ * collects in a geometry item: one mesh of the GL layer (gl/mesh.c), its vertices in one array
+ * per attribute, a table of primitives, the facts of its quads worked out once. Everything
+ * else (state changes, other draws, ...) goes to the driver, which compiles it into a segment:
+ * a private driver list (a name far above the ones programs use, checked free), or list n
+ * itself for the calls before the first geometry; with it we keep which state groups its
+ * calls change (track.c), to mark them when the segment runs. glCallList(s) while compiling
+ * becomes a call item, resolved when the list runs, as GL resolves nested lists. So our object
+ * for list n reads: segment, geometry, segment, call m, ... and glCallList(n) runs it in order:
+ * the driver runs each segment, the GL layer draws each mesh in the state the segments left
+ * (from a buffer object of its own after the first time: nothing is uploaded again; runs of
+ * primitives the driver draws as they are become one multi-draw each, as the driver's own list
+ * would merge them), and only the quads that need smoothing are planned and drawn by us. The
+ * driver never holds the geometry, so a list costs its memory once, and a program with
+ * thousands of small lists does not get thousands of driver lists more. Vertices that take the
+ * current value of an attribute (given in the list only later) are filled when the list runs;
+ * after a geometry item the current attributes are the last ones it gave, as GL leaves them.
+ * Primitives with generic attributes, or that the capture cannot represent, stay primitives
+ * of their own, replayed to the driver. Objects live in the share group of the contexts (a
+ * sorted array by name under a mutex) and are reference counted while they run. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -20,12 +29,25 @@
 #define PL_MAX_NESTING 64         /* GL_MAX_LIST_NESTING's minimum */
 #define PL_FIRST_SUBLIST 0x40000000u
 
-enum { PL_ITEM_SEGMENT, PL_ITEM_PRIM, PL_ITEM_CALL, PL_ITEM_CALLS };
+enum { PL_ITEM_SEGMENT, PL_ITEM_GEOMETRY, PL_ITEM_PRIM, PL_ITEM_CALL, PL_ITEM_CALLS };
+
+/* A geometry item: the mesh, and what it takes from and gives to the current attributes. */
+typedef struct pl_geom {
+    qgl__mesh m;
+    float cur[QGL__NATTR][4]; /* the last values given, left current after the item */
+    unsigned char cur_edge;
+    unsigned set;             /* attributes (QGL__A_EDGE too) the item gives a value */
+    uint32_t lead[QGL__NATTR + 1]; /* vertices before these take the current value at run time */
+    float filled[QGL__NATTR][4];   /* the value those vertices hold now */
+    unsigned char filled_edge;
+    unsigned filled_valid;
+} pl_geom;
 
 typedef struct pl_item {
     int kind;
     GLuint name;       /* segment: the driver's list; call: the list called */
     unsigned mask;     /* segment: what its calls change (track.c's PL_D_*) */
+    pl_geom *geom;     /* PL_ITEM_GEOMETRY */
     pl_prim prim;      /* PL_ITEM_PRIM */
     uint32_t *names;   /* PL_ITEM_CALLS: the names given, the base added when it runs */
     size_t count;
@@ -33,9 +55,11 @@ typedef struct pl_item {
 
 struct pl_list {
     GLuint name;
+    pl_share *share;
     pl_item *items;
     size_t n, cap;
     int refs;
+    int open;          /* while compiling: 0 nothing, 1 a segment, 2 the last item's geometry */
 };
 
 struct pl_share {
@@ -64,11 +88,19 @@ void pl_share_ref(pl_share *s)
     __atomic_add_fetch(&s->refs, 1, __ATOMIC_ACQ_REL);
 }
 
+/* A mesh's buffer object can be deleted only while a context of its share group is current. */
 static void pl_list_free(pl_list *l)
 {
+    pl_ctx *x = pl_tls_ctx;
+    struct qgl__gl *gl = x && x->share == l->share ? pl_gl() : NULL;
     for (size_t i = 0; i < l->n; i++) {
-        pl_prim_free(&l->items[i].prim);
-        free(l->items[i].names);
+        pl_item *it = &l->items[i];
+        if (it->geom) {
+            qgl__mesh_free(gl, l->share, &it->geom->m);
+            free(it->geom);
+        }
+        pl_prim_free(&it->prim);
+        free(it->names);
     }
     free(l->items);
     free(l);
@@ -128,12 +160,9 @@ static int pl_share_empty(pl_share *s)
 /* The driver's lists of a retired object (its own name belongs to the program). */
 static void pl_list_delete_segments(const pl_list *l)
 {
-    for (size_t i = 0; i < l->n; i++) {
+    for (size_t i = 0; i < l->n; i++)
         if (l->items[i].kind == PL_ITEM_SEGMENT && l->items[i].name != l->name)
             REAL(glDeleteLists)(l->items[i].name, 1);
-        if (l->items[i].kind == PL_ITEM_PRIM && l->items[i].prim.native_list)
-            REAL(glDeleteLists)(l->items[i].prim.native_list, 1);
-    }
 }
 
 /* Installs l for its name (NULL l: removes the object for `name`). */
@@ -205,56 +234,139 @@ static pl_item *pl_list_push(pl_list *l, int kind, GLuint name)
     return it;
 }
 
-/* The open segment is the last segment item: it keeps what its calls changed. */
-static void pl_segment_mask(pl_ctx *x)
+/* Ends whatever item is open: the driver's segment (keeping what its calls changed), or the
+ * geometry (its quads' facts worked out). */
+static void pl_list_close(pl_ctx *x)
 {
     pl_list *l = x->compiling;
-    for (size_t i = l->n; i-- > 0;)
-        if (l->items[i].kind == PL_ITEM_SEGMENT) {
-            l->items[i].mask |= x->seg_dirty;
-            break;
-        }
+    pl_item *it = l->n ? &l->items[l->n - 1] : NULL;
+    if (l->open == 1) {
+        REAL(glEndList)();
+        if (it && it->kind == PL_ITEM_SEGMENT)
+            it->mask |= x->seg_dirty;
+    } else if (l->open == 2 && it && it->geom && !qgl__mesh_finish(&it->geom->m)) {
+        pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
+        it->geom->m.nprim = 0;
+    }
     x->seg_dirty = 0;
+    l->open = 0;
 }
 
-void pl_list_segment_close(pl_ctx *x)
+void pl_list_state(pl_ctx *x)
 {
-    pl_segment_mask(x);
-    REAL(glEndList)();
-}
-
-void pl_list_segment_open(pl_ctx *x)
-{
+    pl_list *l = x->compiling;
+    if (l->open == 1)
+        return;
+    pl_list_close(x);
     GLuint sub = pl_share_new_name(x->share);
+    if (!pl_list_push(l, PL_ITEM_SEGMENT, sub)) {
+        pl_log(PL_LOG_WARN, "out of memory while compiling display list %u", l->name);
+        return;
+    }
     REAL(glNewList)(sub, x->compile_mode);
-    if (!pl_list_push(x->compiling, PL_ITEM_SEGMENT, sub))
-        pl_log(PL_LOG_WARN, "out of memory while compiling display list %u", x->compiling->name);
+    l->open = 1;
 }
 
-void pl_list_record_prim(pl_ctx *x, const pl_prim *p)
+/* The open geometry item (opened after closing a segment); NULL without memory. */
+static pl_geom *pl_list_geometry(pl_ctx *x)
 {
-    pl_item *it = pl_list_push(x->compiling, PL_ITEM_PRIM, 0);
-    if (!it || pl_prim_copy(&it->prim, p) != 0) {
-        if (it)
-            x->compiling->n--;
-        pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", x->compiling->name);
+    pl_list *l = x->compiling;
+    if (l->open == 2)
+        return l->items[l->n - 1].geom;
+    pl_list_close(x);
+    pl_item *it = pl_list_push(l, PL_ITEM_GEOMETRY, 0);
+    if (!it)
+        return NULL;
+    if (!(it->geom = calloc(1, sizeof *it->geom))) {
+        l->n--;
+        return NULL;
+    }
+    l->open = 2;
+    return it->geom;
+}
+
+void pl_list_attrib(pl_ctx *x, int slot, const float v[4])
+{
+    pl_geom *g = pl_list_geometry(x);
+    if (!g)
+        return;
+    if (slot == QGL__NATTR) {
+        g->cur_edge = v[0] != 0;
+        g->set |= QGL__A_EDGE;
+    } else {
+        memcpy(g->cur[slot], v, sizeof g->cur[slot]);
+        g->set |= 1u << slot;
     }
 }
 
-void pl_list_native_begin(pl_ctx *x)
+/* Vertex values of slot a (QGL__NATTR: edge flags) for vertices [from, to) of the mesh. */
+static void pl_geom_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge)
 {
-    pl_item *it = x->compiling->n ? &x->compiling->items[x->compiling->n - 1] : NULL;
-    if (!it || it->kind != PL_ITEM_PRIM)
+    if (a == QGL__NATTR) {
+        memset(v->edge + from, edge, to - from);
         return;
-    it->prim.native_list = pl_share_new_name(x->share);
-    REAL(glNewList)(it->prim.native_list, GL_COMPILE);
+    }
+    int k = qgl__attribs[a].floats;
+    for (size_t i = from; i < to; i++)
+        memcpy(v->attr[a] + (size_t)k * i, val, (size_t)k * sizeof(float));
 }
 
-void pl_list_native_end(pl_ctx *x)
+/* Appends a finished primitive to the open geometry. Its attributes given only from a later
+ * vertex take, before it, the value the item last gave, or (none yet) the current value when
+ * the list runs; an attribute the item gave before and the primitive does not, that value. */
+static int pl_geom_add(pl_geom *g, const pl_prim *p)
 {
-    pl_item *it = x->compiling->n ? &x->compiling->items[x->compiling->n - 1] : NULL;
-    if (it && it->kind == PL_ITEM_PRIM && it->prim.native_list)
-        REAL(glEndList)();
+    qgl__verts *m = &g->m.v;
+    size_t base = m->n, n = p->v.n;
+    unsigned old = m->mask, mask = old | p->v.mask | (g->set & (QGL__A_ATTRIBS | QGL__A_EDGE));
+    if (!qgl__verts_reserve(m, base + n, mask))
+        return 0;
+    memcpy(m->pos + 4 * base, p->v.pos, 16 * n);
+    for (int a = 0; a <= QGL__NATTR; a++) {
+        unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
+        if (!(mask & bit))
+            continue;
+        int given = (p->v.mask & bit) != 0;
+        size_t from = given ? p->first[a] : n; /* the primitive's own values from here on */
+        if (from > n)
+            from = n;
+        if (!(old & bit))
+            g->lead[a] = (uint32_t)(base + ((g->set & bit) ? 0 : from));
+        if (g->set & bit)
+            pl_geom_fill(m, a, base, base + from, a == QGL__NATTR ? NULL : g->cur[a], g->cur_edge);
+        if (!given)
+            continue;
+        if (a == QGL__NATTR) {
+            memcpy(m->edge + base + from, p->v.edge + from, n - from);
+            g->cur_edge = p->cur_edge;
+        } else {
+            size_t k = (size_t)qgl__attribs[a].floats;
+            memcpy(m->attr[a] + k * (base + from), p->v.attr[a] + k * from, k * (n - from) * sizeof(float));
+            memcpy(g->cur[a], p->cur[a], sizeof g->cur[a]);
+        }
+        g->set |= bit;
+    }
+    m->mask = mask;
+    m->n = base + n;
+    return qgl__mesh_add_prim(&g->m, p->mode, base, n, p->mat, p->nmat);
+}
+
+void pl_list_add_prim(pl_ctx *x, const pl_prim *p)
+{
+    pl_list *l = x->compiling;
+    if (p->lost || p->generic_given) {
+        pl_list_close(x);
+        pl_item *it = pl_list_push(l, PL_ITEM_PRIM, 0);
+        if (!it || pl_prim_copy(&it->prim, p) != 0) {
+            if (it)
+                l->n--;
+            pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
+        }
+        return;
+    }
+    pl_geom *g = pl_list_geometry(x);
+    if (!g || !pl_geom_add(g, p))
+        pl_log(PL_LOG_WARN, "out of memory: primitives lost from display list %u", l->name);
 }
 
 PL_EXPORT void glNewList(GLuint list, GLenum mode)
@@ -273,6 +385,7 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
         return;
     }
     l->name = list;
+    l->share = x->share;
     l->refs = 1;
     x->compiling = l;
     x->compile_mode = mode;
@@ -280,6 +393,7 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
     pl_update_slow(x);
     REAL(glNewList)(list, mode);
     pl_list_push(l, PL_ITEM_SEGMENT, list);
+    l->open = 1;
 }
 
 PL_EXPORT void glEndList(void)
@@ -294,12 +408,11 @@ PL_EXPORT void glEndList(void)
         REAL(glEndList)();
         return;
     }
-    pl_segment_mask(x);
-    REAL(glEndList)();
     l = x->compiling;
+    pl_list_close(x);
     x->compiling = NULL;
     pl_update_slow(x);
-    if (l->n <= 1 && !l->items[0].mask) {
+    if (l->n == 1 && l->items[0].kind == PL_ITEM_SEGMENT && !l->items[0].mask) {
         /* Nothing recorded and nothing tracked changed: the driver's list is the whole list. */
         pl_share_set(x->share, l->name, NULL);
         pl_list_unref(l);
@@ -311,6 +424,8 @@ PL_EXPORT void glEndList(void)
 PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 {
     pl_ctx *x = pl_tls_ctx;
+    if (PL_UNLIKELY(pl_touch(0)))
+        return;
     REAL(glDeleteLists)(list, range);
     if (!x || range <= 0 || pl_share_empty(x->share))
         return;
@@ -329,6 +444,86 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 }
 
 /* ---- executing ------------------------------------------------------------------------------ */
+
+/* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS as the
+ * triangles its display lists split them into (0-1-3, 1-2-3), not its immediate mode's. */
+static void pl_geom_replay(const qgl__mesh *m)
+{
+    static const int split[6] = {0, 1, 3, 1, 2, 3};
+    struct qgl__gl *gl = pl_gl();
+    const qgl__verts *v = &m->v;
+    for (size_t k = 0; k < m->nprim; k++) {
+        const qgl__mesh_prim *p = &m->prim[k];
+        size_t c = p->chg0, end = p->chg0 + p->nchg, n = p->mode == GL_QUADS ? 6 * (p->count / 4) : p->count;
+        gl->Begin(p->mode == GL_QUADS ? GL_TRIANGLES : p->mode);
+        for (size_t j = 0; j < n; j++) {
+            size_t i = p->first + (p->mode == GL_QUADS ? 4 * (j / 6) + (size_t)split[j % 6] : j);
+            for (; c < end && m->chg[c].vertex <= i; c++)
+                gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
+            for (int a = 0; a < QGL__NATTR; a++)
+                if (v->mask & (1u << a))
+                    qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
+            if (v->mask & QGL__A_EDGE)
+                gl->EdgeFlag(v->edge[i]);
+            gl->Vertex4fv(v->pos + 4 * i);
+        }
+        gl->End();
+        for (; c < end; c++)
+            gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
+        if (p->mode == GL_QUADS || p->mode == GL_QUAD_STRIP)
+            pl_count_passthrough(qgl__nquads(p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP, p->count));
+    }
+}
+
+/* The leading vertices that take the current value get it (the buffer is refilled if it moved). */
+static void pl_geom_lead(pl_ctx *x, pl_geom *g)
+{
+    int changed = 0;
+    for (int a = 0; a <= QGL__NATTR; a++) {
+        if (!g->lead[a])
+            continue;
+        unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
+        float now[4] = {0, 0, 0, 0};
+        unsigned char edge = 0;
+        if (a == QGL__NATTR)
+            edge = pl_current_edge(x);
+        else
+            pl_current_value(x, a, now);
+        if ((g->filled_valid & bit) &&
+            (a == QGL__NATTR ? edge == g->filled_edge : !memcmp(now, g->filled[a], sizeof now)))
+            continue;
+        pl_geom_fill(&g->m.v, a, 0, g->lead[a], now, edge);
+        if (a == QGL__NATTR)
+            g->filled_edge = edge;
+        else
+            memcpy(g->filled[a], now, sizeof now);
+        g->filled_valid |= bit;
+        changed = 1;
+    }
+    if (changed)
+        qgl__mesh_changed(&g->m);
+}
+
+static void pl_geom_exec(pl_ctx *x, pl_geom *g)
+{
+    struct qgl__gl *gl;
+    qgl_context *qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
+    if (g->m.nprim) {
+        pl_geom_lead(x, g);
+        if (!qgl || qgl__mesh_draw(qgl, &g->m, x->share) < 0)
+            pl_geom_replay(&g->m);
+    }
+    gl = pl_gl();
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (g->set & (1u << a)) {
+            qgl__set_current(gl, a, g->cur[a]);
+            pl_note_current(x, a, g->cur[a]);
+        }
+    if (g->set & QGL__A_EDGE) {
+        gl->EdgeFlag(g->cur_edge);
+        pl_hook_edgeflag(x, g->cur_edge);
+    }
+}
 
 static void pl_list_exec(pl_ctx *x, GLuint name, int depth);
 
@@ -359,7 +554,8 @@ static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
             if (it->mask & PL_D_CURRENT)
                 x->cur_known = 0;
             break;
-        case PL_ITEM_PRIM: pl_draw_listed(x, &it->prim); break;
+        case PL_ITEM_GEOMETRY: pl_geom_exec(x, it->geom); break;
+        case PL_ITEM_PRIM: pl_draw_prim(x, &it->prim); break;
         case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
         default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
         }
@@ -395,7 +591,7 @@ static int pl_decode_names(GLsizei n, GLenum type, const void *lists, uint32_t *
 static void pl_compile_call(pl_ctx *x, int kind, GLuint name, uint32_t *names, size_t count)
 {
     pl_item *it;
-    pl_list_segment_close(x);
+    pl_list_close(x);
     it = pl_list_push(x->compiling, kind, name);
     if (it) {
         it->names = names;
@@ -410,7 +606,6 @@ static void pl_compile_call(pl_ctx *x, int kind, GLuint name, uint32_t *names, s
         else if (it)
             pl_exec_calls(x, names, count, 1);
     }
-    pl_list_segment_open(x);
 }
 
 PL_EXPORT void glCallList(GLuint list)

@@ -107,10 +107,6 @@ typedef struct pl_prim {
     size_t nmat, capmat;
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
-    GLuint native_list;      /* in a display list: the driver's own compilation of the same
-                                calls, what a replay (and a draw the split serves exactly) runs */
-    struct pl_retained *retained; /* in a display list: the GL path's retained copy, made at
-                                     its first draw (draw.c) */
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);
@@ -228,15 +224,19 @@ GLboolean pl_current_edge(pl_ctx *x);
 /* The driver's current value of a changes to v (not while only compiling a list). */
 static inline void pl_note_current(pl_ctx *x, int a, const float v[4])
 {
-    if (PL_UNLIKELY(x->compiling)) {
-        x->seg_dirty |= PL_D_CURRENT;
-        if (x->compile_mode == GL_COMPILE)
-            return;
-    }
+    if (PL_UNLIKELY(x->compiling) && x->compile_mode == GL_COMPILE)
+        return;
     float *c = x->cur[a];
     c[0] = v[0], c[1] = v[1], c[2] = v[2], c[3] = v[3];
     x->cur_known |= 1u << a;
 }
+
+/* While compiling: a call the driver must compile comes next (a segment is opened for it). */
+void pl_list_state(pl_ctx *x);
+/* While compiling: a finished primitive (of any mode) joins the list's geometry. */
+void pl_list_add_prim(pl_ctx *x, const pl_prim *p);
+/* While compiling: an attribute call between primitives (slot QGL__NATTR: the edge flag). */
+void pl_list_attrib(pl_ctx *x, int slot, const float v[4]);
 
 /* ---- capture (capture.c, arrays.c) -------------------------------------------------------- */
 
@@ -249,6 +249,8 @@ void pl_cap_array_element(pl_ctx *x, GLint i);
 
 /* The hooks of the generated attribute and vertex wrappers: 1 when the call was captured (it
  * must not reach the driver), 0 when it goes on to the driver. */
+/* Between primitives while compiling, an attribute call joins the list's geometry; under
+ * GL_COMPILE it does not run now. */
 static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
 {
     if (x->capturing) {
@@ -256,6 +258,11 @@ static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, fl
         return 1;
     }
     const float v[4] = {s, t, r, q};
+    if (PL_UNLIKELY(x->compiling)) {
+        pl_list_attrib(x, a, v);
+        if (x->compile_mode == GL_COMPILE)
+            return 1;
+    }
     pl_note_current(x, a, v);
     return 0;
 }
@@ -266,17 +273,20 @@ static inline int pl_hook_texcoord(pl_ctx *x, GLenum unit, float s, float t, flo
         pl_cap_texcoord(x, unit, s, t, r, q);
         return 1;
     }
-    if (unit < PL_TEXUNITS) {
-        const float v[4] = {s, t, r, q};
-        pl_note_current(x, QGL__AT_TEX0 + (int)unit, v);
-    }
+    if (unit < PL_TEXUNITS)
+        return pl_hook_attrib(x, QGL__AT_TEX0 + (int)unit, s, t, r, q);
+    if (PL_UNLIKELY(x->compiling))
+        pl_list_state(x);
     return 0;
 }
 
 static inline int pl_hook_vertex(pl_ctx *x, float a, float b, float c, float d)
 {
-    if (!x->capturing)
+    if (!x->capturing) {
+        if (PL_UNLIKELY(x->compiling))
+            pl_list_state(x);
         return 0;
+    }
     pl_cap_vertex(x, a, b, c, d);
     return 1;
 }
@@ -304,24 +314,9 @@ void pl_prim_apply_current(pl_ctx *x, const pl_prim *p);
 void pl_prim_emit(pl_ctx *x, const pl_prim *p);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
-/* Draws a primitive recorded in a display list (its retained copy when it has one). */
-void pl_draw_listed(pl_ctx *x, pl_prim *p);
-/* Frees a listed primitive's retained copy. */
-void pl_retained_free(struct pl_retained *r);
 
 /* ---- display lists (lists.c) ----------------------------------------------------------------- */
 
-/* While compiling: ends the driver's segment before something we record, and opens the next
- * one after it. */
-void pl_list_segment_close(pl_ctx *x);
-void pl_list_segment_open(pl_ctx *x);
-/* Records a finished primitive in the list being compiled (takes a copy). */
-void pl_list_record_prim(pl_ctx *x, const pl_prim *p);
-/* The driver also compiles the primitive's own calls (made between these two) into a private
- * list: what a replay runs, so it matches the driver's compilation exactly, and what a draw
- * runs when the current state makes the split exact for every quad. */
-void pl_list_native_begin(pl_ctx *x);
-void pl_list_native_end(pl_ctx *x);
 void pl_share_unref(pl_share *s);
 pl_share *pl_share_new(void);
 void pl_share_ref(pl_share *s);

@@ -19,10 +19,13 @@ void pl_invalid_operation(void)
     REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
 }
 
+/* While compiling, every call that is not geometry goes into a segment the driver compiles. */
 void pl_touch_slow(pl_ctx *x, unsigned mask)
 {
-    if (x->compiling)
+    if (x->compiling) {
+        pl_list_state(x);
         x->seg_dirty |= mask;
+    }
 }
 
 void pl_current_value(pl_ctx *x, int a, float out[4])

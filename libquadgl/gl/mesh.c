@@ -1,0 +1,319 @@
+/* mesh.c: the primitives of a display list, kept once and drawn many times.
+ *
+ * A mesh holds every vertex of a run of primitives of any mode (what a display list draws
+ * between two state changes), one array per attribute as captured, a table of primitives
+ * (mode, first vertex, count, the glMaterial calls inside), and per quad of its quad
+ * primitives the facts that do not depend on the GL state (planar, which attributes are
+ * affine: draw.c's qgl__quad_facts). At its first draw the vertices go into a buffer object
+ * of their own, so later draws upload nothing. A draw reads the state (the groups that
+ * changed), and for each quad primitive decides from the facts alone whether the driver's own
+ * split serves it exactly; then runs of consecutive primitives of one mode that the driver
+ * draws as they are become one glMultiDrawArrays from the buffer, as the driver's own display
+ * list would merge them (GL_QUADS as indexed triangles split 0-1-3, 1-2-3: what the driver's
+ * display lists draw, where its immediate mode splits 0-1-2, 0-2-3; a smooth non-affine quad
+ * shows which), and only the quad primitives that need smoothing go through the planner (qgl__draw_batch with the cached facts). Order is kept throughout (blending and
+ * equal depths make it visible). Primitives with glMaterial calls inside, and meshes with
+ * generic attributes, are replayed through immediate mode, the only way to give those per
+ * vertex to fixed function. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_internal.h"
+
+static int grow(void **p, size_t *cap, size_t n, size_t elem)
+{
+    if (n <= *cap)
+        return 1;
+    size_t c = n > 2 * *cap ? n : 2 * *cap;
+    void *q = realloc(*p, (c ? c : 8) * elem);
+    if (!q)
+        return 0;
+    *p = q;
+    *cap = c ? c : 8;
+    return 1;
+}
+
+int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg)
+{
+    if (!grow((void **)&m->prim, &m->capprim, m->nprim + 1, sizeof *m->prim) ||
+        !grow((void **)&m->chg, &m->capchg, m->nchg + nchg, sizeof *m->chg))
+        return 0;
+    qgl__mesh_prim *p = &m->prim[m->nprim++];
+    p->mode = mode;
+    p->first = (uint32_t)first;
+    p->count = (uint32_t)count;
+    p->chg0 = (uint32_t)m->nchg;
+    p->nchg = (uint32_t)nchg;
+    p->facts0 = 0;
+    for (size_t c = 0; c < nchg; c++) {
+        m->chg[m->nchg + c] = chg[c];
+        m->chg[m->nchg + c].vertex += (uint32_t)first;
+    }
+    m->nchg += nchg;
+    return 1;
+}
+
+static int is_quads(GLenum mode)
+{
+    return mode == GL_QUADS || mode == GL_QUAD_STRIP;
+}
+
+static qgl_topology topology(GLenum mode)
+{
+    return mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP;
+}
+
+/* Vertices [first, first + n) of v as arrays of their own. */
+static qgl__verts view(const qgl__verts *v, size_t first, size_t n)
+{
+    qgl__verts w = *v;
+    w.n = w.cap = n;
+    w.pos = v->pos + 4 * first;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (v->mask & (1u << a))
+            w.attr[a] = v->attr[a] + (size_t)qgl__attribs[a].floats * first;
+    if (v->mask & QGL__A_EDGE)
+        w.edge = v->edge + first;
+    w.mask &= ~(unsigned)QGL__A_MATERIAL;
+    return w;
+}
+
+int qgl__mesh_finish(qgl__mesh *m)
+{
+    size_t nq = 0;
+    for (size_t i = 0; i < m->nprim; i++)
+        if (is_quads(m->prim[i].mode))
+            nq += qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+    free(m->facts);
+    m->facts = malloc((nq ? nq : 1) * sizeof *m->facts);
+    m->pfacts = realloc(m->pfacts, (m->nprim ? m->nprim : 1) * sizeof *m->pfacts);
+    if (!m->facts || !m->pfacts)
+        return 0;
+    m->nquads = nq;
+    size_t k = 0;
+    for (size_t i = 0; i < m->nprim; i++) {
+        qgl__mesh_prim *p = &m->prim[i];
+        unsigned all = 0xffffu;
+        p->facts0 = (uint32_t)k;
+        if (is_quads(p->mode)) {
+            qgl__verts w = view(&m->v, p->first, p->count);
+            size_t n = qgl__nquads(topology(p->mode), p->count);
+            for (size_t q = 0; q < n; q++)
+                all &= m->facts[k++] = qgl__quad_facts(&w, topology(p->mode), q);
+        }
+        m->pfacts[i] = (uint16_t)all;
+    }
+    m->stale = 1;
+    return 1;
+}
+
+void qgl__mesh_changed(qgl__mesh *m)
+{
+    m->stale = 1;
+}
+
+void qgl__mesh_free(struct qgl__gl *gl, const void *owner, qgl__mesh *m)
+{
+    if (m->bo && gl && owner == m->owner)
+        gl->DeleteBuffers(1, &m->bo);
+    qgl__verts_free(&m->v);
+    free(m->prim);
+    free(m->chg);
+    free(m->facts);
+    free(m->pfacts);
+    memset(m, 0, sizeof *m);
+}
+
+/* The vertices in the mesh's own buffer (made, or refilled when they changed); 0 when the
+ * buffer belongs to another share group or the driver refused. */
+static int resident(qgl_context *ctx, qgl__mesh *m, const void *owner)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    if (m->bo && m->owner != owner)
+        return 0;
+    if (m->bo && !m->stale)
+        return 1;
+    size_t n = m->v.n, total = 16 * n, nidx = 0;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m->v.mask & (1u << a))
+            total += (n * 4 * (size_t)qgl__attribs[a].floats + 15) & ~(size_t)15;
+    if (m->v.mask & QGL__A_EDGE)
+        total += (n + 15) & ~(size_t)15;
+    for (size_t i = 0; i < m->nprim; i++)
+        if (m->prim[i].mode == GL_QUADS)
+            nidx += 6 * (m->prim[i].count / 4);
+    uint32_t *idx = nidx ? malloc(nidx * sizeof *idx) : NULL;
+    if (nidx && !idx)
+        return 0;
+    total += nidx * sizeof *idx;
+    if (!m->bo) {
+        gl->GenBuffers(1, &m->bo);
+        m->owner = owner;
+    }
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->bo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, NULL, GL_STATIC_DRAW);
+    size_t off = 0;
+    gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(16 * n), m->v.pos);
+    m->off_pos = 0;
+    off = 16 * n;
+    for (int a = 0; a < QGL__NATTR; a++) {
+        if (!(m->v.mask & (1u << a)))
+            continue;
+        size_t bytes = n * 4 * (size_t)qgl__attribs[a].floats;
+        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)bytes, m->v.attr[a]);
+        m->off[a] = off;
+        off += (bytes + 15) & ~(size_t)15;
+    }
+    if (m->v.mask & QGL__A_EDGE) {
+        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)n, m->v.edge);
+        m->off_edge = off;
+        off += (n + 15) & ~(size_t)15;
+    }
+    size_t k = 0;
+    m->off_idx = off;
+    for (size_t i = 0; i < m->nprim; i++) {
+        qgl__mesh_prim *p = &m->prim[i];
+        p->idx0 = (uint32_t)k;
+        if (p->mode != GL_QUADS)
+            continue;
+        for (uint32_t q = 0; q < p->count / 4; q++) {
+            static const int split[6] = {0, 1, 3, 1, 2, 3};
+            for (int c = 0; c < 6; c++)
+                idx[k++] = p->first + 4 * q + (uint32_t)split[c];
+        }
+    }
+    if (nidx)
+        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)(nidx * sizeof *idx), idx);
+    free(idx);
+    m->stale = 0;
+    return 1;
+}
+
+/* Our VAO's arrays at the mesh's buffer. */
+static void point(qgl_context *ctx, const qgl__mesh *m)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    gl->BindVertexArray(ctx->vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->bo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->bo); /* our VAO's */
+    gl->VertexPointer(4, GL_FLOAT, 0, (const void *)(uintptr_t)m->off_pos);
+    gl->EnableClientState(GL_VERTEX_ARRAY);
+    for (int a = 0; a < QGL__NATTR; a++)
+        qgl__attrib_array(gl, a, (m->v.mask >> a) & 1, (const void *)(uintptr_t)m->off[a]);
+    gl->EdgeFlagPointer(0, (const void *)(uintptr_t)m->off_edge);
+    if (m->v.mask & QGL__A_EDGE)
+        gl->EnableClientState(GL_EDGE_FLAG_ARRAY);
+    else
+        gl->DisableClientState(GL_EDGE_FLAG_ARRAY);
+    if (ctx->material_arrays)
+        for (GLuint k = 0; k < QGL__NMATERIAL; k++)
+            gl->DisableVertexAttribArray(QGL__LOC_MATERIAL + k);
+    ctx->material_arrays = 0;
+}
+
+/* Primitives [i0, i1), all the driver's as they are, in as few calls as their modes allow. */
+static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1)
+{
+    while (i0 < i1) {
+        size_t j = i0;
+        GLenum mode = m->prim[i0].mode;
+        while (j < i1 && m->prim[j].mode == mode)
+            j++;
+        if (mode == GL_QUADS) { /* consecutive, so are their indices */
+            size_t n = 6 * ((size_t)m->prim[j - 1].idx0 / 6 + m->prim[j - 1].count / 4 - m->prim[i0].idx0 / 6);
+            ctx->gl.DrawElements(GL_TRIANGLES, (GLsizei)n, GL_UNSIGNED_INT,
+                                 (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)m->prim[i0].idx0));
+            ctx->stats.draws++;
+            i0 = j;
+            continue;
+        }
+        if (!grow((void **)&ctx->multi_first, &ctx->multi_cap, j - i0, sizeof *ctx->multi_first) ||
+            !grow((void **)&ctx->multi_count, &ctx->multi_cap2, j - i0, sizeof *ctx->multi_count))
+            return;
+        for (size_t k = i0; k < j; k++) {
+            ctx->multi_first[k - i0] = (GLint)m->prim[k].first;
+            ctx->multi_count[k - i0] = (GLsizei)m->prim[k].count;
+        }
+        if (j - i0 == 1 || !ctx->gl.MultiDrawArrays)
+            for (size_t k = 0; k < j - i0; k++)
+                ctx->gl.DrawArrays(mode, ctx->multi_first[k], ctx->multi_count[k]);
+        else
+            ctx->gl.MultiDrawArrays(mode, ctx->multi_first, ctx->multi_count, (GLsizei)(j - i0));
+        ctx->stats.draws++;
+        i0 = j;
+    }
+}
+
+/* How primitive i is drawn now: 0 by the driver as it is, 1 through the planner, 2 replayed
+ * (materials inside). */
+static int prim_way(qgl_context *ctx, const qgl__state *st, const qgl__mesh *m, size_t i, int *quad_path)
+{
+    const qgl__mesh_prim *p = &m->prim[i];
+    if (p->nchg)
+        return 2;
+    if (!is_quads(p->mode))
+        return 0;
+    int path = qgl__native_path(ctx, st, m->pfacts[i]);
+    if (path < 0)
+        return 1;
+    *quad_path = path;
+    return 0;
+}
+
+int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
+{
+    if (!ctx->has_vao || m->generic || !m->nprim)
+        return m->nprim ? -1 : 0;
+    qgl__state st;
+    qgl__query_state(ctx, &st);
+    int quads = 0, pointed = 0, touched = 0, path = QGL__P_SPLIT;
+    GLint app_vao = st.vao, app_buffer = st.array_buffer, app_client = st.client_texture;
+    size_t run = 0;
+    for (size_t i = 0; i <= m->nprim; i++) {
+        int way = i < m->nprim ? prim_way(ctx, &st, m, i, &path) : 3;
+        if (way == 0) {
+            if (is_quads(m->prim[i].mode)) {
+                size_t nq = qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+                ctx->stats.quads += nq;
+                qgl__count_path(ctx, (unsigned char)path, nq);
+                quads += (int)nq;
+            }
+            continue;
+        }
+        if (run < i) {
+            if (!pointed && !resident(ctx, m, owner))
+                break;
+            if (!pointed)
+                point(ctx, m), pointed = 1;
+            draw_run(ctx, m, run, i);
+            touched = 1;
+        }
+        run = i + 1;
+        if (way == 3)
+            break;
+        const qgl__mesh_prim *p = &m->prim[i];
+        qgl__verts w = view(&m->v, p->first, p->count);
+        qgl__facts f = {m->facts + p->facts0, m->pfacts[i], NULL, NULL};
+        if (way == 1 || is_quads(p->mode)) {
+            for (size_t c = 0; c < p->nchg; c++)
+                m->chg[p->chg0 + c].vertex -= p->first;
+            int k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE, m->chg + p->chg0, p->nchg);
+            for (size_t c = 0; c < p->nchg; c++)
+                m->chg[p->chg0 + c].vertex += p->first;
+            quads += k > 0 ? k : 0;
+        } else {
+            for (size_t c = 0; c < p->nchg; c++)
+                m->chg[p->chg0 + c].vertex -= p->first;
+            qgl__replay_prim(ctx, p->mode, &w, m->chg + p->chg0, p->nchg);
+            for (size_t c = 0; c < p->nchg; c++)
+                m->chg[p->chg0 + c].vertex += p->first;
+        }
+        pointed = 0; /* the planner draws through the same VAO from the stream buffer */
+    }
+    if (touched) {
+        ctx->gl.BindVertexArray((GLuint)app_vao);
+        ctx->gl.BindBuffer(GL_ARRAY_BUFFER, (GLuint)app_buffer);
+        ctx->gl.ClientActiveTexture((GLenum)app_client);
+    }
+    return quads;
+}
