@@ -223,6 +223,7 @@ static int run_one(const bench_scene *bs, const qgl_sw_method_desc *m, const cha
     res->crease = bench_crease(bs, &img, unit);
     bench_render(bs, m, 1, &rot, NULL);
     bench_error(&rot, &img, unit, &res->rotation, &rmax);
+    res->drift = bench_drift(bs, m);
     if (o->sheet && in_sheet(name)) {
         res->shaded = bench_shaded(bs, m);
         res->heat = bench_heat(&img, &bs->reference, unit);
