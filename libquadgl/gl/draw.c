@@ -756,6 +756,8 @@ static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology
         key |= QGL__K_DEPTH;
     if (path & QGL__P_EXTERNAL)
         key |= QGL__K_DISCARD;
+    if (ctx->method != QGL_METHOD_MVC)
+        key |= QGL__K_PLANE;
     return key;
 }
 
@@ -779,6 +781,8 @@ static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, u
         k->flags |= QGL__KF_DISCARD;
     if (path & QGL__P_CLIPPED)
         k->flags |= QGL__KF_CLIPPED;
+    if (ctx->method != QGL_METHOD_MVC)
+        k->flags |= QGL__KF_PLANE;
 }
 
 static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
