@@ -15,8 +15,8 @@
  * corner values are constant over each triangle and reach the fragment shader unchanged.
  * The fragment shader is the core's robust formula in float. With the view-invariant weights
  * (QGL__K_PLANE) a planar quad's cover is computed in its own plane (qgl_plane_cover) and sent
- * in object space, each vertex with its in-plane position and the corners' in-plane
- * coordinates instead of the corner positions; a non-planar quad keeps the screen cover and g,
+ * in object space, each vertex with its s_i = q_i - q_v (in-plane corners less its own
+ * in-plane position, affine on the surface) instead of the corner positions; a non-planar quad keeps the screen cover and g,
  * adds the corners' in-plane coordinates, and the fragment shader weighs its ray's hit on the
  * bilinear patch (as the geometry shader path does). Programs are generated from
  * draw.c's state key (only the features this file knows: colour, flat, one 2D texture
@@ -37,10 +37,10 @@
 #define KNOWN_KEY (QGL__K_COLOR | QGL__K_FLAT | QGL__K_TEX | QGL__K_REPLACE | QGL__K_NOALPHA | QGL__K_DEPTH | \
                    QGL__K_DISCARD | QGL__K_PLANE | (3u << QGL__K_CORNER_SHIFT))
 
-/* Generic attribute locations: corner positions, corner colours, corner texture coordinates,
- * and for the view-invariant forms the corners' in-plane x and y and the vertex's own in-plane
- * position. */
-enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, LOC_PLANE = 13, NLOC = 16 };
+/* Generic attribute locations: corner positions (with the in-plane cover, the vertex's s_i in
+ * the first two), corner colours, corner texture coordinates, and for the patch form the
+ * corners' in-plane x and y. */
+enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, LOC_PLANE = 13, NLOC = 15 };
 
 #define MAX_PROGRAMS 32
 
@@ -54,17 +54,14 @@ struct qgl__glsl120 {
 };
 
 static const char vs_src[] =
+    "varying vec4 v_g01, v_g23;\n"
     "#if PLANE_COVER\n"
-    "attribute vec4 a_qx, a_qy, a_pl;\n"
-    "varying vec2 v_pl;\n"
+    "attribute vec4 a_s01, a_s23;\n"
     "#else\n"
     "attribute vec4 a_p0, a_p1, a_p2, a_p3;\n"
-    "varying vec4 v_g01, v_g23;\n"
     "#endif\n"
-    "#if PLANE\n"
-    "#if !PLANE_COVER\n"
+    "#if PLANE && !PLANE_COVER\n"
     "attribute vec4 a_qx, a_qy;\n"
-    "#endif\n"
     "varying vec4 v_qx, v_qy;\n"
     "#endif\n"
     "#if COLOR && FLAT\n"
@@ -87,12 +84,13 @@ static const char vs_src[] =
     "void main() {\n"
     "    vec4 X = ftransform();\n"
     "    gl_Position = X;\n"
-    "#if PLANE\n"
+    "#if PLANE && !PLANE_COVER\n"
     "    v_qx = a_qx;\n"
     "    v_qy = a_qy;\n"
     "#endif\n"
     "#if PLANE_COVER\n"
-    "    v_pl = a_pl.xy;\n"
+    "    v_g01 = a_s01;\n"
+    "    v_g23 = a_s23;\n"
     "#else\n"
     "    vec4 C0 = gl_ModelViewProjectionMatrix * a_p0, C1 = gl_ModelViewProjectionMatrix * a_p1;\n"
     "    vec4 C2 = gl_ModelViewProjectionMatrix * a_p2, C3 = gl_ModelViewProjectionMatrix * a_p3;\n"
@@ -120,12 +118,8 @@ static const char vs_src[] =
 /* The fragment shader; quad_weights() (shader.c's qgl__glsl_weights, the core's weights in
  * GLSL) and patch_hit() (qgl__glsl_patch) are put in front of it by compile(). */
 static const char fs_src[] =
-    "#if PLANE_COVER\n"
-    "varying vec2 v_pl;\n"
-    "#else\n"
     "varying vec4 v_g01, v_g23;\n"
-    "#endif\n"
-    "#if PLANE\n"
+    "#if PLANE && !PLANE_COVER\n"
     "varying vec4 v_qx, v_qy;\n"
     "#endif\n"
     "#if COLOR && FLAT\n"
@@ -142,7 +136,7 @@ static const char fs_src[] =
     "#endif\n"
     "#if PLANE_COVER\n"
     "vec4 weights() {\n"
-    "    return quad_weights(v_qx - v_pl.x, v_qy - v_pl.y);\n"
+    "    return quad_weights(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
     "}\n"
     "#elif PLANE\n"
     "float patch_depth;\n"
@@ -212,10 +206,15 @@ static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, const char *b
 
 static void bind_locations(struct qgl__gl *gl, GLuint prog)
 {
-    static const char *const names[NLOC - 1] = {"a_p0", "a_p1", "a_p2", "a_p3", "a_c0", "a_c1", "a_c2", "a_c3",
-                                                "a_t0", "a_t1", "a_t2", "a_t3", "a_qx", "a_qy", "a_pl"};
-    for (int i = 0; i < NLOC - 1; i++)
-        gl->BindAttribLocation(prog, (GLuint)(LOC_POS + i), names[i]);
+    static const struct {
+        const char *name;
+        GLuint loc;
+    } names[] = {{"a_p0", LOC_POS},     {"a_p1", LOC_POS + 1}, {"a_p2", LOC_POS + 2},   {"a_p3", LOC_POS + 3},
+                 {"a_s01", LOC_POS},    {"a_s23", LOC_POS + 1}, {"a_c0", LOC_COL},      {"a_c1", LOC_COL + 1},
+                 {"a_c2", LOC_COL + 2}, {"a_c3", LOC_COL + 3}, {"a_t0", LOC_TEX},      {"a_t1", LOC_TEX + 1},
+                 {"a_t2", LOC_TEX + 2}, {"a_t3", LOC_TEX + 3}, {"a_qx", LOC_PLANE},    {"a_qy", LOC_PLANE + 1}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        gl->BindAttribLocation(prog, names[i].loc, names[i].name);
 }
 
 static GLuint link(qgl_context *ctx, unsigned key, GLuint vs, GLuint fs)
@@ -335,9 +334,9 @@ void qgl__glsl120_free(qgl_context *ctx)
 /* ---- the cover, emitted vertex by vertex ------------------------------------------------------ */
 
 typedef struct layout {
-    int cover;      /* the in-plane cover: each vertex carries its in-plane position */
+    int cover;      /* the in-plane cover: each vertex carries its own s_i (2 vec4s) */
     int npos;       /* corner positions (4, for g; 0 with the in-plane cover) */
-    int nplane;     /* the corners' in-plane x and y (2), or none */
+    int nplane;     /* the corners' in-plane x and y (2, the patch form), or none */
     int ncol, ntex; /* corner colours (0, 1 flat or 4) and texture coordinates (0 or 4) */
     int stride;     /* floats per emitted vertex */
 } layout;
@@ -348,10 +347,10 @@ static layout layout_of(unsigned key)
     int plane = (key & QGL__K_PLANE) != 0;
     l.cover = plane && !(key & QGL__K_DEPTH);
     l.npos = l.cover ? 0 : 4;
-    l.nplane = plane ? 2 : 0;
+    l.nplane = plane && !l.cover ? 2 : 0;
     l.ncol = !(key & QGL__K_COLOR) ? 0 : (key & QGL__K_FLAT) ? 1 : 4;
     l.ntex = key & QGL__K_TEX ? 4 : 0;
-    l.stride = 4 * (1 + l.cover + l.npos + l.nplane + l.ncol + l.ntex);
+    l.stride = 4 * (1 + 2 * l.cover + l.npos + l.nplane + l.ncol + l.ntex);
     return l;
 }
 
@@ -469,8 +468,8 @@ static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, s
         idx[c] = qgl__corner(topo, q, c);
     qgl_cover cov;
     plane_quad pq;
-    float cross[4] = {0, 0, 0, 1}, own[5][4] = {{0}};
-    if (l->nplane && !plane_of(v, idx, &pq))
+    float cross[4] = {0, 0, 0, 1}, own[5][8];
+    if ((l->nplane || l->cover) && !plane_of(v, idx, &pq))
         return 0;
     if (l->cover) {
         int kind = qgl_plane_cover(&pq.pl, &cov);
@@ -479,13 +478,16 @@ static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, s
         int a = cov.cross_edge;
         if (kind == QGL_QUAD_BOWTIE)
             crossing_point(v, idx, a, cov.cross_t, v->pos[4 * idx[a] + 3], v->pos[4 * idx[a + 1] + 3], cross);
+        /* each cover vertex's s_i = q_i - q_v, scaled as the corners */
         for (int c = 0; c < 5; c++)
-            for (int k = 0; k < 2; k++)
-                own[c][k] = (float)((c < 4 ? pq.pl.corner[c][k] : cov.cross[k]) * pq.scale);
+            for (int i = 0; i < 4; i++)
+                for (int k = 0; k < 2; k++)
+                    own[c][2 * i + k] = (float)((pq.pl.corner[i][k] - (c < 4 ? pq.pl.corner[c][k] : cov.cross[k])) *
+                                                pq.scale);
     } else if (!screen_cover(ctx, v, idx, &cov, cross)) {
         return 0;
     }
-    size_t stride = (size_t)l->stride, head = 4 * (size_t)(1 + l->cover);
+    size_t stride = (size_t)l->stride, head = 4 * (size_t)(1 + 2 * l->cover);
     if (!reserve(g, (at + 3 * (size_t)cov.ntri) * stride))
         return -1;
     float block[96];
@@ -496,7 +498,7 @@ static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, s
             int c = cov.tri[t][k];
             copy4(out, c == 4 ? cross : v->pos + 4 * idx[c]);
             if (l->cover)
-                copy4(out + 4, own[c]);
+                memcpy(out + 4, own[c], sizeof own[c]);
             memcpy(out + head, block, (stride - head) * sizeof(float));
         }
     return 3 * cov.ntri;
@@ -509,8 +511,8 @@ static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, s
 static int locations(const layout *l, GLuint loc[NLOC - 1])
 {
     int n = 0;
-    if (l->cover)
-        loc[n++] = (GLuint)(LOC_PLANE + 2);
+    for (int k = 0; k < 2 * l->cover; k++)
+        loc[n++] = (GLuint)(LOC_POS + k);
     for (int c = 0; c < l->npos; c++)
         loc[n++] = (GLuint)(LOC_POS + c);
     for (int k = 0; k < l->nplane; k++)

@@ -32,10 +32,15 @@
  * of the corners' object positions (core plane.c in float) and, for a planar quad, emits the
  * quad's cover in that plane (exact whatever the camera: the clipper cuts it where corners are
  * behind the eye, so nothing outside the quad is drawn and no fragment is killed), each
- * vertex carrying its in-plane position, perspective-interpolated (it is affine on the
- * surface, so the rasterizer hands over each fragment's surface point exactly), and the
- * corners' in-plane coordinates flat; the fragment shader weighs the position with the same
- * robust formula (s_i = q_i - p), and depth is the rasterizer's own. A non-planar quad keeps
+ * vertex v carrying s_i = q_i - q_v, the in-plane corners less its own in-plane position, in
+ * gA and gB: affine on the surface, perspective-interpolated they are each fragment's own
+ * s_i exactly, so the fragment shader is the screen form's, and depth is the rasterizer's
+ * own. Where the driver does not clip, s_i / w_v is sent instead, interpolated without
+ * perspective: that is the fragment's s_i times 1 / w of the fragment, a positive factor the
+ * weights do not see, so no division is left. Times the geometric mean of the corners' w it
+ * stays between the square roots of their ratio and its inverse (the corners are scaled to
+ * at most 1, |s_i| <= 2), which keeps the weights' products in float range up to ratios of
+ * about a million; where the driver clips it is interpolated with perspective, at most 2. A non-planar quad keeps
  * the screen cover and g_i, and the fragment shader intersects its ray with the bilinear patch
  * of the corners (the exact reference's surface), weighs the hit's projection onto the
  * best-fit plane and writes the hit's depth.
@@ -150,7 +155,7 @@ int qgl__key_slots(const qgl__key *k)
 {
     int per = k->flags & QGL__KF_FLAT ? 1 : 4;
     int colours = per * (1 + has_secondary(k)) * (two_sided(k) ? 2 : 1);
-    int n = (plane_cover(k) ? 3 : patch(k) ? 4 : 2) + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
+    int n = (patch(k) ? 4 : 2) + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
     for (int u = 0; u < k->nunits; u++)
         n += k->unit[u].target ? 4 : 0;
     return n;
@@ -367,11 +372,8 @@ static void varyings(sb *b, const qgl__key *k, const char *dir)
 {
     flat_var v[16];
     int n = flat_vars(k, v);
-    if (plane_cover(k))
-        put(b, "%s vec2 pl;\n", dir);
-    else
-        put(b, "%s%s vec4 gA, gB;\n", persp(k) ? "" : "noperspective ", dir);
-    if (k->flags & QGL__KF_PLANE)
+    put(b, "%s%s vec4 gA, gB;\n", persp(k) ? "" : "noperspective ", dir);
+    if (patch(k))
         put(b, "flat %s vec4 f_qx, f_qy;\n", dir);
     for (int i = 0; i < n; i++)
         put(b, "flat %s %s f_%s;\n", dir, flat_type(k, &v[i]), v[i].name);
@@ -483,6 +485,9 @@ static const char gs_cover[] =
     /* in the plane the cover is exact whatever the camera: the clipper cuts it */
     "#if PLANE_COVER\n"
     "    if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
+    "#if !PERSP\n"
+    "    w_mean = sqrt(min(min(w.x, w.y), min(w.z, w.w)) * max(max(w.x, w.y), max(w.z, w.w)));\n"
+    "#endif\n"
     "    vec2 q[4] = vec2[4](Q[0], Q[1], Q[2], Q[3]);\n"
     "    cover(q, diag);\n"
     "#else\n"
@@ -523,7 +528,7 @@ static void gs_source(sb *b, const qgl__key *k)
     if (k->clip && !frag_clip(k))
         put(b, "in vec4 q_eye[];\n");
     if (k->flags & QGL__KF_PLANE)
-        put(b, "in vec4 q_obj[];\nvec2 Q[5];\nvec4 c_qx, c_qy;\nint diag;\n");
+        put(b, "in vec4 q_obj[];\nvec2 Q[5];\nvec4 c_qx, c_qy;\nint diag;\nfloat w_mean;\n");
     varyings(b, k, "out");
     put(b, "uniform vec2 u_px;\nvec4 C[5];\nvec4 g_scale;\n");
     if (k->clip)
@@ -549,10 +554,11 @@ static void gs_source(sb *b, const qgl__key *k)
                "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n");
     put(b, "}\n");
     put(b, "void emit(int k) {\n    vec4 X = C[k];\n    gl_Position = X;\n");
-    if (k->flags & QGL__KF_PLANE)
+    if (patch(k))
         put(b, "    f_qx = c_qx;\n    f_qy = c_qy;\n");
     if (plane_cover(k)) {
-        put(b, "    pl = Q[k];\n");
+        put(b, "    float h = %s;\n", persp(k) ? "1.0" : "w_mean / X.w");
+        put(b, "    gA = vec4(Q[0] - Q[k], Q[1] - Q[k]) * h;\n    gB = vec4(Q[2] - Q[k], Q[3] - Q[k]) * h;\n");
     } else if (persp(k)) {
         put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w) * u_px.xyxy;\n");
         put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w) * u_px.xyxy;\n");
@@ -648,22 +654,17 @@ const char qgl__glsl_patch[] =
     "    vec2 a = qgl_root(s0, e1, e3, g, k0 / q), b = qgl_root(s0, e1, e3, g, q / k2);\n"
     "    float oa = qgl_outside(a), ob = qgl_outside(b);\n"
     "    vec4 ba = qgl_bilinear(a) * w, bb = qgl_bilinear(b) * w;\n"
-    "    float za = dot(ba, z) / dot(ba, vec4(1.0)), zb = dot(bb, z) / dot(bb, vec4(1.0));\n"
+    /* the nearer of two hits by cross-multiplied depths (the w sums are positive) */
+    "    float na = dot(ba, z), da = dot(ba, vec4(1.0)), nb = dot(bb, z), db = dot(bb, vec4(1.0));\n"
     "    bool in_a = oa <= 1e-3, in_b = ob <= 1e-3;\n"
-    "    bool take_b = in_b ? (!in_a || zb < za) : (!in_a && ob < oa);\n"
-    "    depth = take_b ? zb : za;\n"
+    "    bool take_b = in_b ? (!in_a || nb * da < na * db) : (!in_a && ob < oa);\n"
+    "    depth = take_b ? nb / db : na / da;\n"
     "    return qgl_bilinear(take_b ? b : a);\n"
     "}\n";
 
 static const char fs_weights[] =
     "vec4 weights() {\n"
     "    return QGL_WEIGHTS(vec4(gA.x, gA.z, gB.x, gB.z), vec4(gA.y, gA.w, gB.y, gB.w));\n"
-    "}\n";
-
-/* The in-plane form: the interpolated in-plane position against the corners'. */
-static const char fs_weights_plane[] =
-    "vec4 weights() {\n"
-    "    return quad_weights(f_qx - pl.x, f_qy - pl.y);\n"
     "}\n";
 
 /* The patch form: the hit's projection onto the plane, weighed there (the hit's depth and
@@ -837,12 +838,13 @@ static void fs_source(sb *b, const qgl__key *k)
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
             put(b, "uniform %s u_tex%d;\n", sampler_type[k->unit[u].target], u);
-    put(b, "#define QGL_WEIGHTS %s\n", persp(k) ? "quad_weights_any" : "quad_weights");
+    /* in-plane s_i are bounded by the quad's scaled size: no normalisation */
+    put(b, "#define QGL_WEIGHTS %s\n", persp(k) && !plane_cover(k) ? "quad_weights_any" : "quad_weights");
     put(b, "%s", qgl__glsl_weights);
     if (patch(k))
         put(b, "%s%s", qgl__glsl_patch, fs_weights_patch);
     else
-        put(b, "%s", plane_cover(k) ? fs_weights_plane : fs_weights);
+        put(b, "%s", fs_weights);
     put(b, "void main() {\n    vec4 lam = weights();\n");
     /* the cover in the plane is exact: nothing of it lies outside the quad */
     if ((k->flags & QGL__KF_DISCARD) && !plane_cover(k))

@@ -1,8 +1,9 @@
 /* test_plane: the view-invariant shader path (method MVC_PLANE, AUTO's smooth path) against
  * independent references, under random cameras.
  *
- * Planar quads of every shape (convex, trapezoid, concave, bow-tie) in random planes, and a
- * floor with a corner behind the eye, each from several random viewpoints (0 to 80 degrees
+ * Planar quads of every shape (convex, trapezoid, concave, bow-tie) in random planes, a floor
+ * with a corner behind the eye and one reaching towards the horizon (corner w from 0.25 to
+ * 15), each from several random viewpoints (0 to 80 degrees
  * from head-on): every pixel whose 3 x 3 neighbourhood is inside the quad must match the
  * core's double in-plane weights at the pixel's surface point (the ray's hit on the plane,
  * solved in double) within 2/255, and no pixel outside the quad may be drawn. Rendered into a
@@ -335,6 +336,14 @@ static void planar_views(th_ctx *t)
     glMatrixMode(GL_MODELVIEW);
     glLoadIdentity();
     views(t, &f, "behind eye", 0, &seed, NULL, NULL, NULL);
+    /* a floor towards the horizon inside the view volume (not clipped: s_i / w without
+     * perspective), its corners' w from 0.25 to 15 */
+    static const float horizon[4][3] = {{-0.05f, -0.1f, -0.25f}, {0.05f, -0.1f, -0.25f}, {3, -0.1f, -15}, {-2, -0.1f, -15}};
+    static const double target[3] = {0, 0, 0};
+    memcpy(f.p, horizon, sizeof horizon);
+    camera(3.0, 0, 0, target);
+    glLoadIdentity();
+    views(t, &f, "horizon", 0, &seed, NULL, NULL, NULL);
 }
 
 static void drift(th_ctx *t)
