@@ -124,7 +124,8 @@ static int draw_planar_spans(qgl__ctx *c, int quad, const plane_quad *p)
             return 0;
         object_corner(d, quad, i, pos[i]);
     }
-    if (!qgl_is_planar(pos, 1e-6))
+    /* float object positions of small quads (a fine sphere's) are planar to their rounding */
+    if (!qgl_is_planar(pos, 1e-5))
         return 0;
     qgl__quad q;
     qgl__quad_setup(&q, c->fb, clip, p->attr, p->nattr);
