@@ -206,7 +206,8 @@ QGL_API int qgl_weights_inplane(const qgl_plane *pl, double x, double y, double 
 QGL_API int qgl_weights_inplanef(const qgl_planef *pl, float x, float y, float lambda[4]);
 /* The same in one call, in the style of qgl_weights: the weights of the object point p (on
  * or near the quad's surface; projected onto the plane) for the quad with object corners pos.
- * Returns the weights' code, or the frame's when it is negative. */
+ * Returns QGL_NONFINITE for any non-finite input, else the frame's code when it is negative
+ * (QGL_DEGENERATE), else the weights'. */
 QGL_API int qgl_weights_plane(const double pos[4][3], const double p[3], double lambda[4]);
 QGL_API int qgl_weights_planef(const float pos[4][3], const float p[3], float lambda[4]);
 /* The exact cover of the quad in its plane (qgl_classify of pl->corner), a convex quad split

@@ -30,6 +30,7 @@
 #define PLANE qgl_plane
 #define FN(name) plane_##name##_d
 #define EPS (DBL_EPSILON / 2)
+#define BIG (DBL_MAX / 64)
 #define SQRT sqrt
 #define FABS fabs
 #define FREXP frexp
@@ -40,6 +41,7 @@
 #undef PLANE
 #undef FN
 #undef EPS
+#undef BIG
 #undef SQRT
 #undef FABS
 #undef FREXP
@@ -49,6 +51,7 @@
 #define PLANE qgl_planef
 #define FN(name) plane_##name##_f
 #define EPS (FLT_EPSILON / 2)
+#define BIG (FLT_MAX / 64)
 #define SQRT sqrtf
 #define FABS fabsf
 #define FREXP frexpf
@@ -95,21 +98,23 @@ QGL_API int qgl_weights_inplanef(const qgl_planef *pl, float x, float y, float l
 QGL_API int qgl_weights_plane(const double pos[4][3], const double p[3], double lambda[4])
 {
     qgl_plane pl;
-    double xy[2];
-    int r = qgl_plane_frame(pos, &pl);
-    plane_coords_d(&pl, p, xy);
-    int w = qgl_weights_inplane(&pl, isfinite(p[0] + p[1] + p[2]) ? xy[0] : NAN, xy[1], lambda);
-    return r < 0 ? r : w;
+    double xy[2], spos[4][3], sp[3];
+    plane_scale_all_d(pos, p, spos, sp);
+    int r = qgl_plane_frame((const double(*)[3])spos, &pl);
+    plane_coords_d(&pl, sp, xy);
+    int w = qgl_weights_inplane(&pl, isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) ? xy[0] : NAN, xy[1], lambda);
+    return r < 0 && w != QGL_NONFINITE ? r : w;
 }
 
 QGL_API int qgl_weights_planef(const float pos[4][3], const float p[3], float lambda[4])
 {
     qgl_planef pl;
-    float xy[2];
-    int r = qgl_plane_framef(pos, &pl);
-    plane_coords_f(&pl, p, xy);
-    int w = qgl_weights_inplanef(&pl, isfinite(p[0] + p[1] + p[2]) ? xy[0] : NAN, xy[1], lambda);
-    return r < 0 ? r : w;
+    float xy[2], spos[4][3], sp[3];
+    plane_scale_all_f(pos, p, spos, sp);
+    int r = qgl_plane_framef((const float(*)[3])spos, &pl);
+    plane_coords_f(&pl, sp, xy);
+    int w = qgl_weights_inplanef(&pl, isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) ? xy[0] : NAN, xy[1], lambda);
+    return r < 0 && w != QGL_NONFINITE ? r : w;
 }
 
 QGL_API int qgl_plane_cover(const qgl_plane *pl, qgl_cover *out)

@@ -1,8 +1,9 @@
 /* plane_impl.h: a quad's plane frame, written once and instantiated for double and float.
  *
  * plane.c includes this file twice with R (the real type), PLANE (the frame's struct type),
- * FN(name) (the suffixed function name), EPS (the type's unit roundoff), SQRT, FABS, FREXP,
- * LDEXP and ISFINITE. See plane.c for the algorithm. */
+ * FN(name) (the suffixed function name), EPS (the type's unit roundoff), BIG (the type's
+ * largest value over 64), SQRT, FABS, FREXP, LDEXP and ISFINITE. See plane.c for the
+ * algorithm. */
 
 static R FN(dot)(const R a[3], const R b[3])
 {
@@ -80,6 +81,13 @@ static int FN(diagonal)(const R d[4][3])
     return first & 1;
 }
 
+/* x within the type's finite range. */
+static R FN(clamp)(R x)
+{
+    R top = 64 * BIG;
+    return x > top ? top : x < -top ? -top : x;
+}
+
 static int FN(frame)(const R pos[4][3], PLANE *out)
 {
     R d[4][3], n[3] = {0, 0, 1}, u[3], v[3], m = 0;
@@ -97,13 +105,25 @@ static int FN(frame)(const R pos[4][3], PLANE *out)
     out->diagonal = 0;
     if (!finite)
         return QGL_NONFINITE;
+    /* Corners near the type's range are scaled down by a power of two first (exact), so the
+     * differences below cannot overflow; the results are scaled back and clamped. */
+    R big = 0, c[3];
+    for (int i = 0; i < 12; i++)
+        big = FABS(pos[i / 3][i % 3]) > big ? FABS(pos[i / 3][i % 3]) : big;
+    int e0 = 0;
+    if (big > BIG)
+        FREXP(big, &e0);
     /* Centroid, then the corners relative to it scaled by one power of two into [0.5, 1):
      * the frame does not change, and no square overflows or underflows. */
-    for (int k = 0; k < 3; k++)
-        out->origin[k] = (pos[0][k] + pos[1][k] + pos[2][k] + pos[3][k]) / 4;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0;
+        for (int i = 0; i < 4; i++)
+            c[k] += LDEXP(pos[i][k], -e0) / 4;
+        out->origin[k] = LDEXP(c[k], e0);
+    }
     for (int i = 0; i < 4; i++)
         for (int k = 0; k < 3; k++) {
-            d[i][k] = pos[i][k] - out->origin[k];
+            d[i][k] = LDEXP(pos[i][k], -e0) - c[k];
             m = FABS(d[i][k]) > m ? FABS(d[i][k]) : m;
         }
     if (m == 0)
@@ -143,9 +163,9 @@ static int FN(frame)(const R pos[4][3], PLANE *out)
         out->axis[1][k] = v[k];
     }
     for (int i = 0; i < 4; i++) {
-        out->corner[i][0] = LDEXP(FN(dot)(d[i], u), e);
-        out->corner[i][1] = LDEXP(FN(dot)(d[i], v), e);
-        out->height[i] = LDEXP(FN(dot)(d[i], n), e);
+        out->corner[i][0] = FN(clamp)(LDEXP(FN(dot)(d[i], u), e + e0));
+        out->corner[i][1] = FN(clamp)(LDEXP(FN(dot)(d[i], v), e + e0));
+        out->height[i] = FN(clamp)(LDEXP(FN(dot)(d[i], n), e + e0));
     }
     out->diagonal = FN(diagonal)((const R(*)[3])d);
     return degenerate ? QGL_DEGENERATE : 0;
@@ -157,4 +177,22 @@ static void FN(coords)(const PLANE *pl, const R p[3], R xy[2])
     FN(diff)(p, pl->origin, d);
     xy[0] = FN(dot)(d, pl->axis[0]);
     xy[1] = FN(dot)(d, pl->axis[1]);
+}
+
+/* The corners and the point scaled together by a power of two into [0.5, 1) (the weights do
+ * not change): the one-call weights then never overflow on the way. */
+static void FN(scale_all)(const R pos[4][3], const R p[3], R spos[4][3], R sp[3])
+{
+    R m = 0;
+    for (int k = 0; k < 3; k++)
+        m = FABS(p[k]) > m && ISFINITE(p[k]) ? FABS(p[k]) : m;
+    for (int i = 0; i < 12; i++)
+        m = FABS(pos[i / 3][i % 3]) > m && ISFINITE(pos[i / 3][i % 3]) ? FABS(pos[i / 3][i % 3]) : m;
+    int e = 0;
+    if (m > 0)
+        FREXP(m, &e);
+    for (int k = 0; k < 3; k++)
+        sp[k] = LDEXP(p[k], -e);
+    for (int i = 0; i < 12; i++)
+        spos[i / 3][i % 3] = LDEXP(pos[i / 3][i % 3], -e);
 }
