@@ -360,22 +360,28 @@ static void copy4(float *d, const float *s)
 }
 
 /* A quad's in-plane corners (scaled to at most 1, as the geometry shader does) as the two
- * vec4s qx, qy, and its plane; 0 when the corners span no plane or one is at infinity. */
+ * vec4s qx, qy, and its plane; 0 when the corners span no plane. A corner at infinity in
+ * object space makes NDC stand in, as in the geometry shader. */
 typedef struct plane_quad {
     qgl_plane pl;
     double scale;
     float q[2][4];
 } plane_quad;
 
-static int plane_of(const qgl__verts *v, const size_t idx[4], plane_quad *pq)
+static int plane_of(const qgl_context *ctx, const qgl__verts *v, const size_t idx[4], plane_quad *pq)
 {
     double pos[4][3], m = 0;
+    int finite = 1;
+    for (int c = 0; c < 4; c++)
+        finite &= v->pos[4 * idx[c] + 3] > 0;
     for (int c = 0; c < 4; c++) {
         const float *p = v->pos + 4 * idx[c];
-        if (!(p[3] > 0))
+        const double *h = ctx->clip + 4 * idx[c];
+        double w = finite ? p[3] : h[3];
+        if (!(w > 0))
             return 0;
         for (int k = 0; k < 3; k++)
-            pos[c][k] = p[k] / p[3];
+            pos[c][k] = (finite ? p[k] : h[k]) / w;
     }
     if (qgl_plane_frame(pos, &pq->pl) != 0)
         return 0;
@@ -469,7 +475,7 @@ static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, s
     qgl_cover cov;
     plane_quad pq;
     float cross[4] = {0, 0, 0, 1}, own[5][8];
-    if ((l->nplane || l->cover) && !plane_of(v, idx, &pq))
+    if ((l->nplane || l->cover) && !plane_of(ctx, v, idx, &pq))
         return 0;
     if (l->cover) {
         int kind = qgl_plane_cover(&pq.pl, &cov);

@@ -385,11 +385,20 @@ static void varyings(sb *b, const qgl__key *k, const char *dir)
  * centroid, normal the longest of the diagonals' cross product and the corner normals, first
  * axis along the longer diagonal; Q[i] the corners' in-plane coordinates scaled to at most 1
  * (the weights' products stay in float range and the weights do not change), diag the shorter
- * diagonal. False when the corners span no plane. */
+ * diagonal. A corner at infinity in object space (w <= 0) makes NDC stand in for the object
+ * positions: a valid picture, as view-dependent as the screen-space weights. False when the
+ * corners span no plane. */
 static const char gs_plane[] =
     "bool plane_frame() {\n"
     "    vec3 d[4], o = vec3(0.0);\n"
-    "    for (int i = 0; i < 4; i++) { d[i] = q_obj[i].xyz / q_obj[i].w; o += d[i]; }\n"
+    /* a corner at infinity in object space: NDC stands in (planar alike, but not rigid) */
+    "    bool finite = all(greaterThan(vec4(q_obj[0].w, q_obj[1].w, q_obj[2].w, q_obj[3].w), vec4(0.0)));\n"
+    "    for (int i = 0; i < 4; i++) {\n"
+    "        vec4 h = finite ? q_obj[i] : C[i];\n"
+    "        if (!(h.w > 0.0)) return false;\n"
+    "        d[i] = h.xyz / h.w;\n"
+    "        o += d[i];\n"
+    "    }\n"
     "    o *= 0.25;\n"
     "    float m = 0.0;\n"
     "    for (int i = 0; i < 4; i++) { d[i] -= o; m = max(m, max(max(abs(d[i].x), abs(d[i].y)), abs(d[i].z))); }\n"

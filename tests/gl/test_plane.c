@@ -19,7 +19,8 @@
  * twice, coverage equal to the driver's). Two planar quads folded along a shared edge that
  * runs through pixel centres show on that edge the perspective-correct linear interpolation
  * of its two corners (1/255), whichever path draws the neighbour: its own (MVC_PLANE), the
- * screen-space one or the driver's split. All of it on the geometry shader path and on the
+ * screen-space one or the driver's split. A quad with a corner at infinity (object w = 0) is
+ * drawn where the driver draws it. All of it on the geometry shader path and on the
  * GLSL 1.20 path (max_glsl 120). */
 #include <math.h>
 #include <stdio.h>
@@ -568,6 +569,52 @@ static void shared_edge(th_ctx *t)
         }
 }
 
+/* A quad with a corner at infinity (object w = 0) is still drawn (NDC stands in for the
+ * object positions): the driver's split's pixels but for 1% (the far plane cuts the region
+ * near that corner, each by its own depth). */
+static void at_infinity(th_ctx *t)
+{
+    static const float p[4][4] = {{-0.8f, -0.6f, -2, 1}, {0.7f, -0.7f, -2.5f, 1}, {0.3f, 0.2f, -1, 0}, {-0.6f, 0.8f, -3, 1}};
+    static const float c[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.1, 0.1, -0.1, 0.1, 0.1, 20);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    unsigned char *img[2];
+    qgl_gl_stats_t st;
+    for (int k = 0; k < 2; k++) {
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        qgl_gl_set_method(t->qgl, QGL_METHOD_MVC_PLANE);
+        qgl_gl_reset_stats(t->qgl);
+        if (k) {
+            glBegin(GL_QUADS);
+            for (int i = 0; i < 4; i++)
+                glColor4fv(c[i]), glVertex4fv(p[i]);
+            glEnd();
+        } else {
+            qglBegin(GL_QUADS);
+            for (int i = 0; i < 4; i++)
+                qglColor4fv(c[i]), qglVertex4fv(p[i]);
+            qglEnd();
+            qgl_gl_stats(t->qgl, &st);
+        }
+        img[k] = th_snapshot(t);
+    }
+    int ours = 0, differ = 0;
+    for (int i = 0; i < W * H; i++) {
+        int a = img[0][4 * i] || img[0][4 * i + 1] || img[0][4 * i + 2];
+        int b = img[1][4 * i] || img[1][4 * i + 1] || img[1][4 * i + 2];
+        ours += a;
+        differ += a != b;
+    }
+    printf("corner at infinity: %d pixels drawn, %d differ in coverage from the driver's split\n", ours, differ);
+    th_check(ours > 2000 && differ * 100 <= ours && st.mvc == 1, "corner at infinity: %d drawn, %d differ", ours,
+             differ);
+    free(img[0]);
+    free(img[1]);
+}
+
 /* Every check on one context: the geometry shader path, or (max_glsl 120) the GLSL 1.20 one. */
 static int run(int max_glsl)
 {
@@ -588,6 +635,7 @@ static int run(int max_glsl)
     patch_views(&t);
     watertight(&t);
     shared_edge(&t);
+    at_infinity(&t);
     th_free(&t);
     return 0;
 }
