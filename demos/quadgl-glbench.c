@@ -5,7 +5,9 @@
  * non-affine quad at 1024^2 on the shader path; AUTO on a textured latitude/longitude sphere
  * and a height field with random corner colours (the worst case: every quad visibly non-affine)
  * and, for contrast, a flat slice with a smooth colour map (the split invisible); and many tiny
- * quads in immediate mode (1M vertices per frame). Native frames call the driver's
+ * quads in immediate mode (1M vertices per frame). The full-screen quad, the sphere and the
+ * height field are also drawn with the other weights (mvcplane, or mvc beside AUTO's
+ * view-invariant ones) in the same run. Native frames call the driver's
  * glBegin/glVertex directly; ours call the qgl* twins. Usage: quadgl-glbench [frames [name]] (default 9 frames; name runs
  * only the cases whose title contains it, e.g. "mesh", for profiling). */
 #define GL_GLEXT_PROTOTYPES 1
@@ -283,12 +285,15 @@ int main(int argc, char **argv)
     printf("%s, %dx%d, median of %d frames, shader level %d\n", (const char *)glGetString(GL_RENDERER), W, H,
            frames, qgl_gl_shader_level(q));
     report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.5);
+    report("full-screen non-affine quad (mvcplane)", q, QGL_METHOD_MVC_PLANE, setup_ortho, fullscreen, frames, 2.5);
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("mesh, one draw per strip (auto)", q1, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("colour-mapped slice 64x64 (auto)", q, QGL_METHOD_AUTO, setup_persp, slice, frames, 1.1);
     report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.3);
+    /* the screen-space weights on the same scenes, for AUTO's view-invariant ones above */
     report("sphere 48x24 textured (mvc)", q, QGL_METHOD_MVC, setup_persp, sphere, frames, 99);
+    report("mesh 64x64 colour strips (mvc)", q, QGL_METHOD_MVC, setup_persp, mesh, frames, 99);
     qgl_gl_destroy(q);
     qgl_gl_destroy(q1);
     OSMesaDestroyContext(osm);

@@ -4,6 +4,8 @@
 #                   table and the GL path's frame-time ratios against the native split
 #   sheet.png       software methods side by side with error heat maps (scenes x methods)
 #   plot.png        time against error, log-log, one panel per scene
+#   drift.png       one textured planar quad from four viewpoints, screen-space against
+#                   view-invariant weights, with the view drift as a heat map
 #   bench.csv       one row per scene x method
 #   demo/contact_sheet.png   the same scenes drawn through GL (OSMesa): native split, quadgl, reference
 # and prints the report. Extra arguments go to quadgl-bench (e.g. --quick).
@@ -21,7 +23,8 @@ mkdir -p out
     echo
     echo "## Software methods: speed against error (one core)"
     echo
-    build/demos/quadgl-bench --sheet out/sheet.png --plot out/plot.png --csv out/bench.csv "$@"
+    build/demos/quadgl-bench --sheet out/sheet.png --plot out/plot.png --csv out/bench.csv \
+        --drift-sheet out/drift.png "$@"
     echo
     echo "## GL path on this machine's driver: frame time against the native split"
     echo
@@ -32,4 +35,4 @@ mkdir -p out
 build/demos/quadgl-demo --headless --out out/demo >out/demo.log
 cat out/report.md
 echo
-echo "quadgl: pictures in out/sheet.png, out/plot.png and out/demo/contact_sheet.png; report in out/report.md"
+echo "quadgl: pictures in out/sheet.png, out/plot.png, out/drift.png and out/demo/contact_sheet.png; report in out/report.md"

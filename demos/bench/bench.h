@@ -27,7 +27,7 @@ typedef struct bench_scene {
 typedef struct bench_result {
     char scene[64], method[64];
     qgl_sw_method_desc m;
-    double ms, mpix_s, rms, max, crease, rotation;
+    double ms, mpix_s, rms, max, crease, rotation, drift;
     long long fragments;
     float *shaded;   /* RGB, top row first, for the sheet (NULL when not kept) */
     float *heat;     /* RGB heat map of the error, top row first */
@@ -45,6 +45,15 @@ void bench_error(const bench_image *a, const bench_image *ref, double unit, doub
 double bench_crease(const bench_scene *bs, const bench_image *a, double unit);
 /* RGB heat map of |a - ref| * unit (log scale 1e-3 .. 10 units), top row first. */
 float *bench_heat(const bench_image *a, const bench_image *ref, double unit);
+/* The view drift (bench_drift.c): the largest change of the value at fixed surface points of
+ * a sample of the scene's quads over an orbit of cameras, head-on to 80 degrees, in units. */
+double bench_drift(const bench_scene *bs, const qgl_sw_method_desc *m);
+/* The heat map's colour of an error of e units (log scale 1e-3 .. 10). */
+void bench_heat_units(double e, float rgb[3]);
+/* A picture of the view drift (bench_drift.c): the scene's first quad from four viewpoints
+ * (head-on to 80 degrees), each with mvc and mvcplane, shaded and with the change against the
+ * head-on value at each pixel's surface point as a heat map; size pixels per image. */
+int bench_drift_sheet(const char *path, const bench_scene *bs, int size);
 /* Shaded RGB render (top row first) with the scene's shader. */
 float *bench_shaded(const bench_scene *bs, const qgl_sw_method_desc *m);
 

@@ -190,6 +190,11 @@ static void heat_color(double t, float *rgb)
         rgb[k] = (float)((1 - f) * stops[i][k] + f * stops[i + 1][k]);
 }
 
+void bench_heat_units(double e, float rgb[3])
+{
+    heat_color(e > 0 ? (log10(e) + 3) / 4 : 0, rgb);
+}
+
 float *bench_heat(const bench_image *a, const bench_image *ref, double unit)
 {
     int w = a->width, h = a->height;

@@ -29,11 +29,12 @@ static const char *unit_of(const bench_scene *scenes, int nscenes, const char *n
 
 void bench_table(const bench_result *r, int n, const bench_scene *scenes, int nscenes)
 {
-    printf("| scene | method | ms | Mpix/s | RMS | max | crease | rotation | unit |\n");
-    printf("|---|---|---:|---:|---:|---:|---:|---:|---|\n");
+    printf("| scene | method | ms | Mpix/s | RMS | max | crease | rotation | drift | unit |\n");
+    printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int i = 0; i < n; i++)
-        printf("| %s | %s | %.3f | %.1f | %.4g | %.4g | %.4g | %.4g | %s |\n", r[i].scene, r[i].method, r[i].ms,
-               r[i].mpix_s, r[i].rms, r[i].max, r[i].crease, r[i].rotation, unit_of(scenes, nscenes, r[i].scene));
+        printf("| %s | %s | %.3f | %.1f | %.4g | %.4g | %.4g | %.4g | %.4g | %s |\n", r[i].scene, r[i].method,
+               r[i].ms, r[i].mpix_s, r[i].rms, r[i].max, r[i].crease, r[i].rotation, r[i].drift,
+               unit_of(scenes, nscenes, r[i].scene));
 }
 
 int bench_csv(const char *path, const bench_result *r, int n)
@@ -43,12 +44,13 @@ int bench_csv(const char *path, const bench_result *r, int n)
         fprintf(stderr, "quadgl-bench: %s: %s\n", path, strerror(errno));
         return -1;
     }
-    fprintf(f, "scene,method,param,ms,mpix_s,rms,max,crease,rotation\n");
+    fprintf(f, "scene,method,param,ms,mpix_s,rms,max,crease,rotation,drift\n");
     for (int i = 0; i < n; i++) {
         const char *colon = strchr(r[i].method, ':');
         int len = colon ? (int)(colon - r[i].method) : (int)strlen(r[i].method);
-        fprintf(f, "%s,%.*s,\"%s\",%.6f,%.4f,%.6g,%.6g,%.6g,%.6g\n", r[i].scene, len, r[i].method,
-                colon ? colon + 1 : "", r[i].ms, r[i].mpix_s, r[i].rms, r[i].max, r[i].crease, r[i].rotation);
+        fprintf(f, "%s,%.*s,\"%s\",%.6f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g\n", r[i].scene, len, r[i].method,
+                colon ? colon + 1 : "", r[i].ms, r[i].mpix_s, r[i].rms, r[i].max, r[i].crease, r[i].rotation,
+                r[i].drift);
     }
     return fclose(f) ? -1 : 0;
 }

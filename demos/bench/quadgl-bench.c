@@ -5,8 +5,9 @@
  * scene's unit, the crease measure and the change under rotating the corner order. Prints
  * a Markdown table, a throughput line for mvc against split02 from the same run (one
  * full-screen quad at 1024^2 by default) with the machine's division throughput as the
- * arithmetic limit, and a Pareto summary; optionally --csv, --plot (gnuplot) and --sheet
- * (images and error heat maps). Single-threaded by design: the figures are per core. */
+ * arithmetic limit, a Pareto summary and the view drift of mvc against the view-invariant
+ * methods; optionally --csv, --plot (gnuplot), --sheet (images and error heat maps) and
+ * --drift-sheet (one quad from four viewpoints with its drift). Single-threaded by design: the figures are per core. */
 #include "bench.h"
 
 #include <dirent.h>
@@ -29,15 +30,15 @@
 
 static const char *full_methods = "split02,split13,mvc,mvc64,bilinear:2,bilinear:4,bilinear:8,bilinear:16,"
                                   "bilinear:32,adaptive:area=800,adaptive,adaptive:q=1e-4,t=1e-5,area=50,"
-                                  "invbilinear,projective,exact";
+                                  "invbilinear,projective,exact,mvcplane,mvcpatch,invbilinearplane";
 static const char *quick_methods = "split02,split13,mvc,mvc64,bilinear:2,bilinear:8,adaptive,invbilinear,"
-                                   "projective,exact";
+                                   "projective,exact,mvcplane,mvcpatch";
 static const char *sheet_columns[] = {"split02", "split13", "mvc", "bilinear:8", "adaptive",
                                       "invbilinear", "projective", "exact"};
 
 typedef struct options {
     int quick, size, repeats, speed_size, thumb;
-    const char *methods, *csv, *plot, *sheet;
+    const char *methods, *csv, *plot, *sheet, *drift_sheet;
     const char *scene_paths[MAX_SCENES];
     int nscene_paths;
 } options;
@@ -47,7 +48,10 @@ static void usage(void)
     fprintf(stderr,
             "usage: quadgl-bench [--quick] [--size N] [--repeats N] [--speed-size N] [--methods LIST]\n"
             "                    [--csv FILE] [--plot FILE.png] [--sheet FILE.png] [--thumb N]\n"
+            "                    [--drift-sheet FILE.png]\n"
             "                    [SCENE_FILE_OR_DIR...]   (default: %s)\n"
+            "--drift-sheet: oliveira_trapezoid (else the first scene) from four viewpoints, mvc and\n"
+            "mvcplane, with the change against the head-on value as a heat map\n"
             "methods: comma-separated names as qgl_sw_method_parse takes them; adaptive's own\n"
             "parameters use commas too and run to the next name (e.g. adaptive:q=1e-4,t=1e-5,mvc)\n",
             QGL_SCENE_DIR);
@@ -76,6 +80,8 @@ static int parse_args(int argc, char **argv, options *o)
             o->plot = argv[++i];
         else if (!strcmp(a, "--sheet") && more)
             o->sheet = argv[++i];
+        else if (!strcmp(a, "--drift-sheet") && more)
+            o->drift_sheet = argv[++i];
         else if (a[0] != '-' && o->nscene_paths < MAX_SCENES)
             o->scene_paths[o->nscene_paths++] = a;
         else
@@ -223,6 +229,7 @@ static int run_one(const bench_scene *bs, const qgl_sw_method_desc *m, const cha
     res->crease = bench_crease(bs, &img, unit);
     bench_render(bs, m, 1, &rot, NULL);
     bench_error(&rot, &img, unit, &res->rotation, &rmax);
+    res->drift = bench_drift(bs, m);
     if (o->sheet && in_sheet(name)) {
         res->shaded = bench_shaded(bs, m);
         res->heat = bench_heat(&img, &bs->reference, unit);
@@ -363,6 +370,68 @@ static void pareto(const bench_result *r, int n, const bench_scene *scenes, int 
     }
 }
 
+/* ---- view drift: the screen-space weights against the view-invariant ones ---- */
+
+static const bench_result *result_of(const bench_result *r, int n, const char *scene, const char *method)
+{
+    for (int i = 0; i < n; i++)
+        if (!strcmp(r[i].scene, scene) && !strcmp(r[i].method, method))
+            return &r[i];
+    return NULL;
+}
+
+/* Every quad of the scene planar (relative 1e-6, the planner's test). */
+static int scene_planar(const qgl_sw_scene *s)
+{
+    for (int q = 0; q < s->nquads; q++) {
+        double p[4][3];
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                p[i][k] = s->pos[3 * s->quad[4 * q + i] + k];
+        if (!qgl_is_planar(p, 1e-6))
+            return 0;
+    }
+    return 1;
+}
+
+/* Per scene: mvc's drift beside mvcplane's and mvcpatch's, and the target for planar quads
+ * (half an 8-bit level, 1/64 texel: float rounding only). */
+static void drift_summary(const bench_result *r, int n, const bench_scene *scenes, int nscenes)
+{
+    static const char *const cols[] = {"mvc", "mvcplane", "mvcpatch", "split02", "exact"};
+    enum { NCOLS = sizeof cols / sizeof cols[0] };
+    printf("\n## View drift: largest change at fixed surface points, head-on to 80 degrees\n\n");
+    printf("| scene | quads | unit | mvc | mvcplane | mvcpatch | split02 | exact | target (planar) |\n"
+           "|---|---|---|---:|---:|---:|---:|---:|---|\n");
+    for (int s = 0; s < nscenes; s++) {
+        const qgl_sw_scene *sc = scenes[s].scene;
+        int planar = scene_planar(sc), levels = !strcmp(sc->unit, "levels");
+        double target = levels ? 0.5 : 1.0 / 64;
+        printf("| %s | %s | %s |", sc->name, planar ? "planar" : "non-planar", sc->unit);
+        for (int c = 0; c < NCOLS; c++) {
+            const bench_result *x = result_of(r, n, sc->name, cols[c]);
+            if (x)
+                printf(" %.3g |", x->drift);
+            else
+                printf(" |");
+        }
+        const bench_result *p = result_of(r, n, sc->name, "mvcplane");
+        if (planar && p)
+            printf(" < %.3g: %s |\n", target, p->drift < target ? "met" : "MISSED");
+        else
+            printf(" |\n");
+    }
+}
+
+/* The drift picture's scene: Oliveira's textured trapezoid when it is loaded, else the first. */
+static const bench_scene *drift_scene(const bench_scene *scenes, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!strcmp(scenes[i].scene->name, "oliveira_trapezoid"))
+            return &scenes[i];
+    return &scenes[0];
+}
+
 int main(int argc, char **argv)
 {
     options o = {.repeats = 0};
@@ -411,9 +480,12 @@ int main(int argc, char **argv)
     bench_table(res, nr, scenes, ns);
     throughput(o.speed_size, o.repeats < 3 ? 3 : o.repeats);
     pareto(res, nr, scenes, ns);
+    drift_summary(res, nr, scenes, ns);
     if (o.csv && bench_csv(o.csv, res, nr))
         status = 1;
     if (o.plot && bench_plot(o.plot, res, nr, scenes, ns))
+        status = 1;
+    if (o.drift_sheet && ns > 0 && bench_drift_sheet(o.drift_sheet, drift_scene(scenes, ns), 256))
         status = 1;
     if (o.sheet && bench_sheet(o.sheet, res, nr, scenes, ns, sheet_columns,
                                (int)(sizeof sheet_columns / sizeof sheet_columns[0]), o.thumb))

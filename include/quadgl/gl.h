@@ -17,13 +17,19 @@ extern "C" {
 /* How quads are drawn. AUTO plans per quad: the driver's split where it is exact (planar,
  * attributes affine in object space) or invisible (tiny on screen, or a planar quad whose split
  * differs from the smooth result by less than the output shows: split_error), the smooth path
- * otherwise. MVC forces the smooth path, SPLIT the driver's own quads, SUBDIV the CPU
- * subdivision fallback. */
+ * otherwise. The smooth path of AUTO, MVC_PLANE and SUBDIV weighs view-invariantly: mean value
+ * weights of the fragment's position in the quad's own plane (a non-planar quad: of its hit on
+ * the bilinear patch, projected onto the best-fit plane), so a surface point keeps its value
+ * as the camera moves. MVC forces the smooth path with H&T's screen-space weights (the paper's
+ * method: they change with the viewpoint, even on a planar quad), MVC_PLANE the smooth path
+ * with the view-invariant ones, SPLIT the driver's own quads, SUBDIV the CPU subdivision
+ * fallback. */
 typedef enum qgl_method {
     QGL_METHOD_AUTO = 0,
     QGL_METHOD_MVC = 1,
     QGL_METHOD_SPLIT = 2,
-    QGL_METHOD_SUBDIV = 3
+    QGL_METHOD_SUBDIV = 3,
+    QGL_METHOD_MVC_PLANE = 4
 } qgl_method;
 
 typedef struct qgl_context qgl_context;

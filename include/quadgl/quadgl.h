@@ -169,6 +169,52 @@ typedef struct qgl_adaptive_params {
 QGL_API int qgl_subdiv_adaptive(const double *quad, int stride, int pos_off, int tex_off, int clip_off,
                                 const qgl_adaptive_params *params, qgl_mesh *out);
 
+/* ---- view-invariant weights: mean value coordinates in the quad's own plane ----------------- */
+
+/* The frame of a quad's plane, fixed to the quad: a surface point's in-plane coordinates are
+ * axis[k] . (p - origin), whatever the camera. For a non-planar quad, the best-fit plane
+ * (Newell's normal) with the split along `diagonal` as its surface. */
+typedef struct qgl_plane {
+    double origin[3];    /* the corners' centroid */
+    double normal[3];    /* unit normal */
+    double axis[2][3];   /* orthonormal in-plane axes (axis[0] x axis[1] = normal) */
+    double corner[4][2]; /* the corners' in-plane coordinates (object units) */
+    double height[4];    /* the corners' signed distances from the plane (0 when planar) */
+    int diagonal;        /* the preferred split: 0 along corners 0-2, 1 along 1-3 (the shorter in
+                            object space, chosen from positions alone: rotating the corner order
+                            keeps it) */
+} qgl_plane;
+
+typedef struct qgl_planef {
+    float origin[3], normal[3], axis[2][3], corner[4][2], height[4];
+    int diagonal;
+} qgl_planef;
+
+/* The plane frame of the quad with object corners pos (GL order). Returns 0, QGL_DEGENERATE
+ * when the corners span no plane (collinear or coincident; out then holds a frame of their
+ * line) or QGL_NONFINITE (out then the identity frame at the origin, corners 0). */
+QGL_API int qgl_plane_frame(const double pos[4][3], qgl_plane *out);
+QGL_API int qgl_plane_framef(const float pos[4][3], qgl_planef *out);
+/* In-plane coordinates of the object point p (its orthogonal projection onto the plane). */
+QGL_API void qgl_plane_coords(const qgl_plane *pl, const double p[3], double xy[2]);
+QGL_API void qgl_plane_coordsf(const qgl_planef *pl, const float p[3], float xy[2]);
+/* View-invariant mean value weights of the in-plane point (x, y): the core's robust weights
+ * of the point in the quad of pl->corner (every w = 1). An attribute is sum lambda[i] a_i, with
+ * no perspective division: the in-plane position already is the surface point. Return codes
+ * as qgl_weights. */
+QGL_API int qgl_weights_inplane(const qgl_plane *pl, double x, double y, double lambda[4]);
+QGL_API int qgl_weights_inplanef(const qgl_planef *pl, float x, float y, float lambda[4]);
+/* The same in one call, in the style of qgl_weights: the weights of the object point p (on
+ * or near the quad's surface; projected onto the plane) for the quad with object corners pos.
+ * Returns QGL_NONFINITE for any non-finite input, else the frame's code when it is negative
+ * (QGL_DEGENERATE), else the weights'. */
+QGL_API int qgl_weights_plane(const double pos[4][3], const double p[3], double lambda[4]);
+QGL_API int qgl_weights_planef(const float pos[4][3], const float p[3], float lambda[4]);
+/* The exact cover of the quad in its plane (qgl_classify of pl->corner), a convex quad split
+ * along pl->diagonal: drawn in object space, it covers the screen quad exactly whatever the
+ * camera, corners behind the eye included (the clipper cuts its triangles). Returns the kind. */
+QGL_API int qgl_plane_cover(const qgl_plane *pl, qgl_cover *out);
+
 /* ---- inverse bilinear (Quilez), for comparison ---------------------------------------------- */
 
 /* Parameters (u, v) of the point (x, y) in the bilinear patch of the 2D quad q with corners

@@ -49,6 +49,16 @@ typedef enum qgl_sw_method {
                             bilinear attributes (Heckbert; exact for planar parallelograms) */
     QGL_SW_EXACT,        /* reference: each pixel's ray against the bilinear patch of the
                             corners, double precision, nearest visible hit */
+    QGL_SW_MVCPLANE,     /* view-invariant: mean value weights of the fragment's position in
+                            the quad's own plane (float, as the GL path), the quad's in-plane
+                            cover rasterized as triangles; a non-planar quad's best-fit plane,
+                            with the split along the shorter diagonal as its surface; needs
+                            desc.object for view invariance */
+    QGL_SW_MVCPATCH,     /* view-invariant for non-planar quads too: the exact reference's hit
+                            on the bilinear patch, weighed with mean value weights in the
+                            best-fit plane (double), the patch's depth */
+    QGL_SW_INVBILINEARPLANE, /* the inverse bilinear map of the in-plane quad (Quilez's stable
+                            quadratic): for a planar convex quad, the exact reference */
     QGL_SW_METHOD_COUNT
 } qgl_sw_method;
 

@@ -33,15 +33,15 @@ QGL_API qgl_context *qgl_gl_current(void)
 
 static qgl_method env_method(void)
 {
+    static const struct {
+        const char *name;
+        qgl_method method;
+    } names[] = {{"mvc", QGL_METHOD_MVC}, {"mvcplane", QGL_METHOD_MVC_PLANE}, {"split", QGL_METHOD_SPLIT},
+                 {"subdiv", QGL_METHOD_SUBDIV}};
     const char *s = secure_getenv("QUADGL_METHOD");
-    if (!s)
-        return QGL_METHOD_AUTO;
-    if (!strcmp(s, "mvc"))
-        return QGL_METHOD_MVC;
-    if (!strcmp(s, "split"))
-        return QGL_METHOD_SPLIT;
-    if (!strcmp(s, "subdiv"))
-        return QGL_METHOD_SUBDIV;
+    for (size_t i = 0; s && i < sizeof names / sizeof names[0]; i++)
+        if (!strcmp(s, names[i].name))
+            return names[i].method;
     return QGL_METHOD_AUTO;
 }
 
@@ -176,7 +176,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
 
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method)
 {
-    if (ctx && method >= QGL_METHOD_AUTO && method <= QGL_METHOD_SUBDIV) {
+    if (ctx && method >= QGL_METHOD_AUTO && method <= QGL_METHOD_MVC_PLANE) {
         qgl__flush(ctx); /* waiting quads were given under the old method */
         ctx->method = method;
     }

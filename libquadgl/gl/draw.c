@@ -297,9 +297,9 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
 /* ---- invisible splits: the split's error against the mean value interpolant ----------------
  *
  * Both interpolants are sums w_i(p) f_i of the corner values with weights summing to 1 (the
- * split's perspective-correct barycentrics of the triangle holding p, the perspective mean
- * value weights). On a planar quad both reproduce every attribute affine in object space, so
- * their difference d(p) = w_split(p) - w_mvc(p) is orthogonal to those: d(p) = delta(p) n, n
+ * split's perspective-correct barycentrics of the triangle holding p, the mean value weights
+ * of p's surface point in the quad's plane, which AUTO's smooth path draws). On a planar quad
+ * both reproduce every attribute affine in object space, so their difference d(p) = w_split(p) - w_mvc(p) is orthogonal to those: d(p) = delta(p) n, n
  * the affine dependency of the corners (sum n_i c_i = 0 in clip space, sum n_i = 0). The error
  * of any attribute is then delta(p) (n . f): one geometric gain, max |delta|, times a residual
  * per attribute component, whatever the state does to the attribute linearly (texture
@@ -309,9 +309,10 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
  * four triangles the diagonals cut, for both diagonals (drivers differ in which they use), and
  * multiplied by SPLIT_SAFETY. Measured over 19 000 random planar convex quads in random
  * perspective (corner angles jittered by +-36 degrees, radii 0.3 to 1.3, near-triangles
- * included), a 121 x 121 grid's maximum was at most 1.65 times the sampled one, and d(p) was
- * parallel to n everywhere on it. Sampling costs nine weight evaluations, so a bound that
- * needs none comes first: on a convex quad both weight vectors lie in [0, 1], so
+ * included), a 121 x 121 grid's maximum was at most 1.65 times the sampled one for the
+ * screen-space weights, and d(p) was parallel to n everywhere on it; for the in-plane weights
+ * tests/core/test_plane measures the same ratio (below SPLIT_SAFETY). Sampling costs nine
+ * weight evaluations, so a bound that needs none comes first: on a convex quad both weight vectors lie in [0, 1], so
  * |delta| <= 1 / max |n_i| (at most 2); quads within the budget by it (a smooth colour map on
  * a fine mesh) are split at once, and quads more than 8 times over it (where the samples,
  * which find about a quarter of it, could not pass) are not sampled. */
@@ -394,9 +395,22 @@ static int gain_samples(const double v[4][2], double pts[9][2])
     return 1;
 }
 
+/* AUTO's smooth weights at a screen point: the in-plane weights of the surface point there,
+ * which the split's weights sp at that point (either diagonal: the quad is planar) put in the
+ * plane. */
+static int plane_weights(const qgl_plane *pl, const double sp[4], double out[4])
+{
+    double xy[2] = {0, 0};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 2; k++)
+            xy[k] += sp[i] * pl->corner[i][k];
+    return qgl_weights_inplane(pl, xy[0], xy[1], out);
+}
+
 /* Whether the sampled gain max |delta| (n unit length) times SPLIT_SAFETY stays within limit.
  * The crossing comes first: most quads that fail, fail there, after one weight evaluation. */
-static int gain_within(const double *clip[4], const GLint vp[4], const double n[4], double limit)
+static int gain_within(const double *clip[4], const GLint vp[4], const double n[4], double limit,
+                       const qgl_plane *pl)
 {
     double v[4][2], w[4], cl[4][4], pts[9][2];
     for (int i = 0; i < 4; i++) { /* in pixels, as the shader path weighs (n is unchanged) */
@@ -417,7 +431,8 @@ static int gain_within(const double *clip[4], const GLint vp[4], const double n[
     limit /= SPLIT_SAFETY;
     for (int k = 0; k < 9; k++) {
         double mvc[4], sp[4];
-        if (qgl_weights(cl, pts[k][0], pts[k][1], mvc, NULL) != QGL_INSIDE)
+        split_weights(v, w, 0, pts[k][0], pts[k][1], sp);
+        if (plane_weights(pl, sp, mvc) != QGL_INSIDE)
             return 0;
         for (int a = 0; a < 2; a++) {
             split_weights(v, w, a, pts[k][0], pts[k][1], sp);
@@ -511,7 +526,12 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
             limit = l < limit ? l : limit;
         }
     }
-    return limit > 0 && gain_within(clip, st->viewport, n, limit);
+    /* AUTO's smooth path weighs in the quad's plane */
+    double p[4][3];
+    qgl_plane pl;
+    if (!object_corners(v, idx, p) || qgl_plane_frame(p, &pl) != 0)
+        return 0;
+    return limit > 0 && gain_within(clip, st->viewport, n, limit, &pl);
 }
 
 /* Whether the driver may clip at this clip coordinate: outside, or so close inside that the
@@ -729,6 +749,8 @@ static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology
         key |= QGL__K_DEPTH;
     if (path & QGL__P_EXTERNAL)
         key |= QGL__K_DISCARD;
+    if (ctx->method != QGL_METHOD_MVC)
+        key |= QGL__K_PLANE;
     return key;
 }
 
@@ -752,6 +774,8 @@ static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, u
         k->flags |= QGL__KF_DISCARD;
     if (path & QGL__P_CLIPPED)
         k->flags |= QGL__KF_CLIPPED;
+    if (ctx->method != QGL_METHOD_MVC)
+        k->flags |= QGL__KF_PLANE;
 }
 
 static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,

@@ -1,20 +1,30 @@
-/* fallback.c: the CPU path: subdivide a quad so the driver's fixed function draws the MVC
+/* fallback.c: the CPU path: subdivide a quad so the driver's fixed function draws the smooth
  * interpolant within a screen-space tolerance.
  *
- * The quad's exact screen cover (core classification) is cut into a uniform grid of n x n
- * sub-triangles per cover triangle. Each grid point p gets the core's perspective weights
- * lambda'(p), and is sent as the homogeneous object point sum lambda'_i X_i with the
- * attributes sum lambda'_i a_i: the driver's transform maps it exactly back to p (the weights
- * reproduce the point, eq. 2 and 9) with the eq. 4 depth, and its per-vertex work (lighting,
- * texgen, fog, an application's program) runs on interpolated inputs. n doubles until the
- * driver's perspective-correct interpolation of the grid weights, checked at every
- * sub-triangle's centroid, differs from the true weights by at most tolerance_px relative to
- * the quad's size in pixels (weights error times diameter: how far, in pixels, the attribute
- * pattern is displaced). Quads with a corner at or behind the eye, and degenerate ones, are
- * sent as the plain split. Known limit: grids of neighbouring quads differ along shared
- * edges (T-junctions), which can open sub-pixel cracks there. */
+ * Three forms, as the shader path weighs. Screen-space weights (method MVC): the quad's exact
+ * screen cover (core classification) is cut into a uniform grid of n x n sub-triangles per
+ * cover triangle; each grid point p gets the core's perspective weights lambda'(p) and is sent
+ * as the homogeneous object point sum lambda'_i X_i with the attributes sum lambda'_i a_i: the
+ * driver's transform maps it exactly back to p (the weights reproduce the point, eq. 2 and 9)
+ * with the eq. 4 depth. View-invariant weights (every other method), planar quads and quads
+ * with a corner behind the eye: the quad's cover in its own plane (qgl_plane_cover) is cut
+ * into a grid uniform in object space; each grid point is a point of the cover triangle
+ * (sent as it is, so the picture is the quad's own surface, which the driver clips where it
+ * must), weighed by the in-plane mean value weights of its position in the plane. Non-planar
+ * quads in front of the eye: the bilinear patch of the corners sampled on an n x n grid of its
+ * parameters, every cell as four triangles around its centre (no diagonal preferred), each
+ * point a point of the patch weighed in the best-fit plane, as the shader path's patch form.
+ * The driver's per-vertex work (lighting, texgen, fog, an application's program) runs on
+ * interpolated inputs. n doubles until the driver's interpolation of the grid weights over
+ * each sub-triangle, checked at its centroid, differs from the true weights by at most
+ * tolerance_px relative to the quad's size in pixels (weights error times diameter: how far,
+ * in pixels, the attribute pattern is displaced; a quad reaching behind the eye counts as
+ * large as the viewport). The screen form sends quads with a corner at or behind the eye,
+ * and degenerate ones, as the plain split. Known limit: grids of neighbouring quads differ
+ * along shared edges (T-junctions), which can open sub-pixel cracks there. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gl_internal.h"
 
@@ -22,62 +32,32 @@
 
 typedef struct grid {
     int n;
-    double (*lam)[4]; /* perspective weights per grid point */
-    double *w;        /* clip w of the grid point's vertex */
+    double (*lam)[4]; /* weights per grid point (perspective weights in the screen form) */
+    double (*pos)[4]; /* the corners' weights in the grid point's object position (plane and
+                         patch forms) */
+    double *w;        /* clip w of the grid point's vertex (screen form) */
 } grid;
+
+static int grid_alloc(grid *g, size_t npts)
+{
+    g->n = 1;
+    g->lam = malloc(npts * sizeof *g->lam);
+    g->pos = malloc(npts * sizeof *g->pos);
+    g->w = malloc(npts * sizeof *g->w);
+    return g->lam && g->pos && g->w;
+}
+
+static void grid_free(grid *g)
+{
+    free(g->lam);
+    free(g->pos);
+    free(g->w);
+}
 
 /* Grid point (i, j) of a triangle subdivided n times, row-major over i + j <= n. */
 static int gidx(int n, int i, int j)
 {
     return i * (n + 1) - i * (i - 1) / 2 + j;
-}
-
-static void fill_grid(const double clip[4][4], const double P[3][2], grid *g)
-{
-    int n = g->n;
-    for (int i = 0; i <= n; i++)
-        for (int j = 0; j + i <= n; j++) {
-            double a = (double)i / n, b = (double)j / n;
-            double x = P[0][0] + a * (P[1][0] - P[0][0]) + b * (P[2][0] - P[0][0]);
-            double y = P[0][1] + a * (P[1][1] - P[0][1]) + b * (P[2][1] - P[0][1]);
-            int k = gidx(n, i, j);
-            qgl_weights(clip, x, y, g->lam[k], NULL);
-            g->w[k] = 0;
-            for (int c = 0; c < 4; c++)
-                g->w[k] += g->lam[k][c] * clip[c][3];
-        }
-}
-
-/* Largest weight error at the centroids of the sub-triangles of g. */
-static double grid_error(const double clip[4][4], const double P[3][2], const grid *g)
-{
-    int n = g->n;
-    double err = 0;
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j + i < n; j++)
-            for (int up = 0; up < 2; up++) {
-                if (up && i + j + 2 > n)
-                    continue;
-                int k[3] = {gidx(n, i, j), gidx(n, i + 1, j), gidx(n, i, j + 1)};
-                double a = (i + 1.0 / 3) / n, b = (j + 1.0 / 3) / n;
-                if (up) {
-                    k[0] = gidx(n, i + 1, j + 1);
-                    a = (i + 2.0 / 3) / n, b = (j + 2.0 / 3) / n;
-                }
-                double x = P[0][0] + a * (P[1][0] - P[0][0]) + b * (P[2][0] - P[0][0]);
-                double y = P[0][1] + a * (P[1][1] - P[0][1]) + b * (P[2][1] - P[0][1]);
-                double exact[4], num[4] = {0}, den = 0;
-                qgl_weights(clip, x, y, exact, NULL);
-                for (int v = 0; v < 3; v++) {
-                    double f = 1.0 / g->w[k[v]];
-                    den += f;
-                    for (int c = 0; c < 4; c++)
-                        num[c] += f * g->lam[k[v]][c];
-                }
-                for (int c = 0; c < 4; c++)
-                    err = fmax(err, fabs(num[c] / den - exact[c]));
-            }
-    return err;
 }
 
 static void lerp_attr(float *dst, const float *src, int dim, const size_t idx[4], const double lam[4])
@@ -90,12 +70,14 @@ static void lerp_attr(float *dst, const float *src, int dim, const size_t idx[4]
     }
 }
 
-/* Append the vertex with weights lam (flat: the colour of corner flat, else -1). */
-static void emit(qgl__verts *out, const qgl__verts *v, const size_t idx[4], const double lam[4], int flat)
+/* Append the vertex at the object position sum pos_i X_i with the attributes sum lam_i a_i
+ * (flat: the colour of corner flat, else -1). */
+static void emit(qgl__verts *out, const qgl__verts *v, const size_t idx[4], const double pos[4], const double lam[4],
+                 int flat)
 {
     size_t i = out->n++;
     unsigned m = out->mask;
-    lerp_attr(out->pos + 4 * i, v->pos, 4, idx, lam);
+    lerp_attr(out->pos + 4 * i, v->pos, 4, idx, pos);
     if (m & QGL__A_COLOR) {
         if (flat >= 0)
             for (int k = 0; k < 4; k++)
@@ -114,23 +96,237 @@ static void emit(qgl__verts *out, const qgl__verts *v, const size_t idx[4], cons
             lerp_attr(out->tex[u] + 4 * i, v->tex[u], 4, idx, lam);
 }
 
+/* Grid point k: its position weights, or (the screen form) its weights, which are both. */
+static const double *grid_pos(const grid *g, int k)
+{
+    return g->pos ? g->pos[k] : g->lam[k];
+}
+
+static void emit_point(qgl__verts *out, const qgl__verts *v, const size_t idx[4], const grid *g, int k, int flat)
+{
+    emit(out, v, idx, grid_pos(g, k), g->lam[k], flat);
+}
+
 static void emit_grid(qgl__verts *out, const qgl__verts *v, const size_t idx[4], const grid *g, int flat)
 {
     int n = g->n;
     for (int i = 0; i < n; i++)
         for (int j = 0; j + i < n; j++) {
-            emit(out, v, idx, g->lam[gidx(n, i, j)], flat);
-            emit(out, v, idx, g->lam[gidx(n, i + 1, j)], flat);
-            emit(out, v, idx, g->lam[gidx(n, i, j + 1)], flat);
+            emit_point(out, v, idx, g, gidx(n, i, j), flat);
+            emit_point(out, v, idx, g, gidx(n, i + 1, j), flat);
+            emit_point(out, v, idx, g, gidx(n, i, j + 1), flat);
             if (i + j + 2 > n)
                 continue;
-            emit(out, v, idx, g->lam[gidx(n, i + 1, j)], flat);
-            emit(out, v, idx, g->lam[gidx(n, i + 1, j + 1)], flat);
-            emit(out, v, idx, g->lam[gidx(n, i, j + 1)], flat);
+            emit_point(out, v, idx, g, gidx(n, i + 1, j), flat);
+            emit_point(out, v, idx, g, gidx(n, i + 1, j + 1), flat);
+            emit_point(out, v, idx, g, gidx(n, i, j + 1), flat);
         }
 }
 
-static double diameter(const double P[5][2])
+/* ---- what the grid interpolates: one weight function per form ------------------------------- */
+
+/* A triangle (or the patch) to subdivide, and the weights at a point of it. */
+typedef struct form form;
+struct form {
+    /* weights (and for the plane and patch forms the position weights) at parameters (a, b):
+     * barycentric in the triangle, or (u, v) on the patch */
+    void (*at)(const form *f, double a, double b, double lam[4], double pos[4]);
+    double clip[4][4];  /* screen form: clip corners in pixels */
+    double P[3][2];     /* screen form: the triangle's screen points */
+    double cw[3][4];    /* plane form: the triangle's vertices as weights of the corners */
+    double obj[4][4];   /* plane and patch forms: homogeneous object corners */
+    qgl_plane pl;
+};
+
+static void screen_at(const form *f, double a, double b, double lam[4], double pos[4])
+{
+    double x = f->P[0][0] + a * (f->P[1][0] - f->P[0][0]) + b * (f->P[2][0] - f->P[0][0]);
+    double y = f->P[0][1] + a * (f->P[1][1] - f->P[0][1]) + b * (f->P[2][1] - f->P[0][1]);
+    qgl_weights(f->clip, x, y, lam, NULL);
+    memcpy(pos, lam, 4 * sizeof(double));
+}
+
+/* The in-plane weights of the object point with corner weights pos. */
+static void weigh_in_plane(const form *f, const double pos[4], double lam[4])
+{
+    double h[4] = {0, 0, 0, 0}, p[3], xy[2];
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            h[k] += pos[c] * f->obj[c][k];
+    for (int k = 0; k < 3; k++)
+        p[k] = h[k] / h[3];
+    qgl_plane_coords(&f->pl, p, xy);
+    qgl_weights_inplane(&f->pl, xy[0], xy[1], lam);
+}
+
+static void plane_at(const form *f, double a, double b, double lam[4], double pos[4])
+{
+    for (int c = 0; c < 4; c++)
+        pos[c] = (1 - a - b) * f->cw[0][c] + a * f->cw[1][c] + b * f->cw[2][c];
+    weigh_in_plane(f, pos, lam);
+}
+
+static void patch_at(const form *f, double u, double v, double lam[4], double pos[4])
+{
+    pos[0] = (1 - u) * (1 - v), pos[1] = u * (1 - v), pos[2] = u * v, pos[3] = (1 - u) * v;
+    weigh_in_plane(f, pos, lam);
+}
+
+/* ---- triangles: the screen and plane forms ----------------------------------------------- */
+
+static void fill_grid(const form *f, grid *g)
+{
+    int n = g->n;
+    for (int i = 0; i <= n; i++)
+        for (int j = 0; j + i <= n; j++) {
+            int k = gidx(n, i, j);
+            double pos[4];
+            f->at(f, (double)i / n, (double)j / n, g->lam[k], pos);
+            if (g->pos)
+                memcpy(g->pos[k], pos, sizeof pos);
+            g->w[k] = 0;
+            for (int c = 0; c < 4; c++)
+                g->w[k] += pos[c] * f->clip[c][3];
+        }
+}
+
+/* Largest weight error at the centroids of the sub-triangles of g: the driver interpolates
+ * the vertices' weights perspective-correctly on screen (the screen form's grid is uniform on
+ * screen: weights 1/w), affinely in object space (the plane form's is uniform there). */
+static double grid_error(const form *f, const grid *g)
+{
+    int n = g->n;
+    double err = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j + i < n; j++)
+            for (int up = 0; up < 2; up++) {
+                if (up && i + j + 2 > n)
+                    continue;
+                int k[3] = {gidx(n, i, j), gidx(n, i + 1, j), gidx(n, i, j + 1)};
+                double a = (i + 1.0 / 3) / n, b = (j + 1.0 / 3) / n;
+                if (up) {
+                    k[0] = gidx(n, i + 1, j + 1);
+                    a = (i + 2.0 / 3) / n, b = (j + 2.0 / 3) / n;
+                }
+                double exact[4], pos[4], num[4] = {0}, den = 0;
+                f->at(f, a, b, exact, pos);
+                for (int v = 0; v < 3; v++) {
+                    double fw = g->pos ? 1 : 1.0 / g->w[k[v]];
+                    den += fw;
+                    for (int c = 0; c < 4; c++)
+                        num[c] += fw * g->lam[k[v]][c];
+                }
+                for (int c = 0; c < 4; c++)
+                    err = fmax(err, fabs(num[c] / den - exact[c]));
+            }
+    return err;
+}
+
+/* Subdivide until the grid is within tolerance (diam: the quad's size in pixels), then emit. */
+static int subdivide_tri(qgl_context *ctx, const form *f, int plane, double diam, const qgl__verts *v,
+                         const size_t idx[4], int flat, qgl__verts *out)
+{
+    grid g;
+    if (!grid_alloc(&g, (MAX_N + 1) * (MAX_N + 2) / 2)) {
+        grid_free(&g);
+        return 0;
+    }
+    if (!plane) {
+        free(g.pos);
+        g.pos = NULL;
+    }
+    for (;;) {
+        fill_grid(f, &g);
+        if (g.n >= MAX_N || diam / g.n < 1 || grid_error(f, &g) * diam <= ctx->tolerance_px)
+            break;
+        g.n *= 2;
+    }
+    int ok = qgl__verts_reserve(out, out->n + 3 * (size_t)g.n * g.n, out->mask);
+    if (ok)
+        emit_grid(out, v, idx, &g, flat);
+    grid_free(&g);
+    return ok;
+}
+
+/* ---- the patch form ---------------------------------------------------------------------- */
+
+/* Screen position in pixels of the object point with corner weights pos. */
+static void screen_of(const form *f, const double pos[4], double out[2])
+{
+    double x = 0, y = 0, w = 0;
+    for (int c = 0; c < 4; c++)
+        x += pos[c] * f->clip[c][0], y += pos[c] * f->clip[c][1], w += pos[c] * f->clip[c][3];
+    out[0] = x / w, out[1] = y / w;
+}
+
+/* How far, in pixels, an n x n patch grid displaces the attribute pattern, checked at the
+ * centroid of each triangle and the midpoints of its two spokes (its third side is an edge
+ * line of the patch, exact): the weights' interpolation error times the quad's size, or the
+ * distance on screen between the triangle's point and the patch point of the same parameters
+ * (the triangles are chords of the curved patch), whichever is larger. */
+static double patch_error(const form *f, int n, double diam)
+{
+    static const double cu[5] = {0, 1, 1, 0, 0.5}, cv[5] = {0, 0, 1, 1, 0.5};
+    /* the check points as weights of the triangle's corner a, corner b and the centre */
+    static const double mix[3][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+    double err = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double lam[5][4], pos[5][4];
+            for (int c = 0; c < 5; c++)
+                f->at(f, (i + cu[c]) / n, (j + cv[c]) / n, lam[c], pos[c]);
+            for (int t = 0; t < 4; t++) {
+                const int v3[3] = {t, (t + 1) & 3, 4};
+                for (int m = 0; m < 3; m++) {
+                    double u = 0, v = 0, exact[4], p[4], chord[4], sp[2], sc[2];
+                    for (int k = 0; k < 3; k++)
+                        u += mix[m][k] * cu[v3[k]], v += mix[m][k] * cv[v3[k]];
+                    f->at(f, (i + u) / n, (j + v) / n, exact, p);
+                    for (int c = 0; c < 4; c++) {
+                        double l = 0;
+                        chord[c] = 0;
+                        for (int k = 0; k < 3; k++) {
+                            l += mix[m][k] * lam[v3[k]][c];
+                            chord[c] += mix[m][k] * pos[v3[k]][c];
+                        }
+                        err = fmax(err, fabs(l - exact[c]) * diam);
+                    }
+                    screen_of(f, p, sp);
+                    screen_of(f, chord, sc);
+                    err = fmax(err, hypot(sp[0] - sc[0], sp[1] - sc[1]));
+                }
+            }
+        }
+    return err;
+}
+
+static int subdivide_patch(qgl_context *ctx, const form *f, double diam, const qgl__verts *v, const size_t idx[4],
+                           int flat, qgl__verts *out)
+{
+    int n = 1;
+    while (n < MAX_N && diam / n >= 1 && patch_error(f, n, diam) > ctx->tolerance_px)
+        n *= 2;
+    if (!qgl__verts_reserve(out, out->n + 12 * (size_t)n * n, out->mask))
+        return 0;
+    static const double cu[5] = {0, 1, 1, 0, 0.5}, cv[5] = {0, 0, 1, 1, 0.5};
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double lam[5][4], pos[5][4];
+            for (int c = 0; c < 5; c++)
+                f->at(f, (i + cu[c]) / n, (j + cv[c]) / n, lam[c], pos[c]);
+            for (int t = 0; t < 4; t++) {
+                int a = t, b = (t + 1) & 3;
+                emit(out, v, idx, pos[a], lam[a], flat);
+                emit(out, v, idx, pos[b], lam[b], flat);
+                emit(out, v, idx, pos[4], lam[4], flat);
+            }
+        }
+    return 1;
+}
+
+/* ---- per quad ---------------------------------------------------------------------------- */
+
+static double diameter(const double P[4][2])
 {
     double d = 0;
     for (int a = 0; a < 4; a++)
@@ -139,35 +335,7 @@ static double diameter(const double P[5][2])
     return d;
 }
 
-/* Subdivide cover triangle tri until the grid is within tolerance, then emit it. */
-static int subdivide_tri(qgl_context *ctx, const double clip[4][4], const double P5[5][2], const unsigned char tri[3],
-                         double diam, const qgl__verts *v, const size_t idx[4], int flat, qgl__verts *out)
-{
-    double P[3][2];
-    for (int k = 0; k < 3; k++)
-        P[k][0] = P5[tri[k]][0], P[k][1] = P5[tri[k]][1];
-    size_t npts = (MAX_N + 1) * (MAX_N + 2) / 2;
-    grid g = {1, malloc(npts * sizeof *g.lam), malloc(npts * sizeof *g.w)};
-    if (!g.lam || !g.w) {
-        free(g.lam);
-        free(g.w);
-        return 0;
-    }
-    for (;;) {
-        fill_grid(clip, P, &g);
-        if (g.n >= MAX_N || diam / g.n < 1 || grid_error(clip, P, &g) * diam <= ctx->tolerance_px)
-            break;
-        g.n *= 2;
-    }
-    int ok = qgl__verts_reserve(out, out->n + 3 * (size_t)g.n * g.n, out->mask);
-    if (ok)
-        emit_grid(out, v, idx, &g, flat);
-    free(g.lam);
-    free(g.w);
-    return ok;
-}
-
-/* The plain split, for quads the cover cannot describe (corners behind the eye). */
+/* The plain split, for quads the screen cover cannot describe (corners behind the eye). */
 static int emit_split(const qgl__verts *v, const size_t idx[4], int flat, qgl__verts *out)
 {
     static const int tris[6] = {0, 1, 2, 0, 2, 3};
@@ -176,7 +344,62 @@ static int emit_split(const qgl__verts *v, const size_t idx[4], int flat, qgl__v
     for (int k = 0; k < 6; k++) {
         double lam[4] = {0};
         lam[tris[k]] = 1;
-        emit(out, v, idx, lam, flat);
+        emit(out, v, idx, lam, lam, flat);
+    }
+    return 1;
+}
+
+static int subdivide_screen(qgl_context *ctx, form *f, const qgl__verts *v, const size_t idx[4], int flat,
+                            qgl__verts *out)
+{
+    double P[5][2];
+    qgl_cover cov;
+    int kind = qgl_classify_clip(f->clip, &cov);
+    if (kind < 0 || kind == QGL_QUAD_EXTERNAL || kind == QGL_QUAD_DEGENERATE || cov.ntri == 0)
+        return emit_split(v, idx, flat, out);
+    for (int c = 0; c < 4; c++)
+        P[c][0] = f->clip[c][0] / f->clip[c][3], P[c][1] = f->clip[c][1] / f->clip[c][3];
+    P[4][0] = cov.cross[0], P[4][1] = cov.cross[1];
+    double diam = diameter((const double(*)[2])P);
+    f->at = screen_at;
+    for (int t = 0; t < cov.ntri; t++) {
+        for (int k = 0; k < 3; k++)
+            f->P[k][0] = P[cov.tri[t][k]][0], f->P[k][1] = P[cov.tri[t][k]][1];
+        if (!subdivide_tri(ctx, f, 0, diam, v, idx, flat, out))
+            return 0;
+    }
+    return 1;
+}
+
+/* The in-plane cover's vertex k (a corner, or 4: the crossing point on edge a, a+1 at the
+ * in-plane parameter t, made homogeneous with the object w) as corner weights. */
+static void cover_weights(const form *f, const qgl_cover *cov, int k, double cw[4])
+{
+    memset(cw, 0, 4 * sizeof(double));
+    if (k < 4) {
+        cw[k] = 1;
+        return;
+    }
+    int a = cov->cross_edge, b = a + 1;
+    double t = cov->cross_t, wa = f->obj[a][3], wb = f->obj[b][3];
+    double s = t * wa / ((1 - t) * wb + t * wa);
+    cw[a] = 1 - s;
+    cw[b] = s;
+}
+
+static int subdivide_plane(qgl_context *ctx, form *f, double diam, const qgl__verts *v, const size_t idx[4], int flat,
+                           qgl__verts *out)
+{
+    qgl_cover cov;
+    int kind = qgl_plane_cover(&f->pl, &cov);
+    if (kind < 0 || kind == QGL_QUAD_DEGENERATE)
+        return 1;
+    f->at = plane_at;
+    for (int t = 0; t < cov.ntri; t++) {
+        for (int k = 0; k < 3; k++)
+            cover_weights(f, &cov, cov.tri[t][k], f->cw[k]);
+        if (!subdivide_tri(ctx, f, 1, diam, v, idx, flat, out))
+            return 0;
     }
     return 1;
 }
@@ -185,26 +408,31 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
                    qgl__verts *out)
 {
     size_t idx[4];
-    double clip[4][4], P[5][2];
+    form f;
+    double pos[4][3], P[4][2];
     /* clip x and y scaled by the viewport's half size: screen points in pixels from its
      * centre, so the weights are those of the quad as it appears (as on the shader path) */
     const double scale[4] = {0.5 * st->viewport[2], 0.5 * st->viewport[3], 1, 1};
+    int front = 1, finite_obj = 1;
     for (int c = 0; c < 4; c++) {
         idx[c] = qgl__corner(topo, q, c);
-        for (int k = 0; k < 4; k++)
-            clip[c][k] = ctx->clip[4 * idx[c] + k] * scale[k];
+        for (int k = 0; k < 4; k++) {
+            f.clip[c][k] = ctx->clip[4 * idx[c] + k] * scale[k];
+            f.obj[c][k] = v->pos[4 * idx[c] + k];
+        }
+        front &= f.clip[c][3] > 0;
+        finite_obj &= f.obj[c][3] > 0;
+        for (int k = 0; k < 3 && finite_obj; k++)
+            pos[c][k] = f.obj[c][k] / f.obj[c][3];
+        if (front)
+            P[c][0] = f.clip[c][0] / f.clip[c][3], P[c][1] = f.clip[c][1] / f.clip[c][3];
     }
     int flat = st->shade_model == GL_FLAT ? qgl__flat_corner(ctx, st, topo) : -1;
-    qgl_cover cov;
-    int kind = qgl_classify_clip(clip, &cov);
-    if (kind < 0 || kind == QGL_QUAD_EXTERNAL || kind == QGL_QUAD_DEGENERATE || cov.ntri == 0)
-        return emit_split(v, idx, flat, out);
-    for (int c = 0; c < 4; c++)
-        P[c][0] = clip[c][0] / clip[c][3], P[c][1] = clip[c][1] / clip[c][3];
-    P[4][0] = cov.cross[0], P[4][1] = cov.cross[1];
-    double diam = diameter(P);
-    for (int t = 0; t < cov.ntri; t++)
-        if (!subdivide_tri(ctx, clip, P, cov.tri[t], diam, v, idx, flat, out))
-            return 0;
-    return 1;
+    if (ctx->method == QGL_METHOD_MVC || !finite_obj || qgl_plane_frame(pos, &f.pl) != 0)
+        return subdivide_screen(ctx, &f, v, idx, flat, out);
+    double diam = front ? diameter((const double(*)[2])P) : hypot(st->viewport[2], st->viewport[3]);
+    if (!front || qgl_is_planar(pos, 1e-6))
+        return subdivide_plane(ctx, &f, diam, v, idx, flat, out);
+    f.at = patch_at;
+    return subdivide_patch(ctx, &f, diam, v, idx, flat, out);
 }

@@ -305,7 +305,11 @@ enum {
     QGL__KF_COLOR_SUM = 1 << 9,    /* unlit: add the secondary colour */
     QGL__KF_FOG_DEPTH = 1 << 10,   /* fog source is the fragment depth (else the fog coordinate) */
     QGL__KF_MATERIAL = 1 << 11,    /* materials given per vertex (generic attributes) */
-    QGL__KF_CLIPPED = 1 << 12      /* the driver may clip: g perspective-interpolated */
+    QGL__KF_CLIPPED = 1 << 12,     /* the driver may clip: g perspective-interpolated */
+    QGL__KF_PLANE = 1 << 13        /* view-invariant weights in the quad's plane: planar (no
+                                      DEPTH), the cover in the plane and the in-plane position
+                                      as a varying; non-planar (DEPTH), the ray against the
+                                      bilinear patch per fragment, its projection weighed */
 };
 
 typedef struct qgl__key {
@@ -376,7 +380,8 @@ enum {
     QGL__K_DEPTH = 1 << 5,    /* non-planar: write gl_FragDepth from the screen weights */
     QGL__K_DISCARD = 1 << 6,  /* corners behind the eye: cover is the clipped split, kill outside */
     QGL__K_CORNER_SHIFT = 7,  /* 2 bits: the provoking corner */
-    QGL__K_EXTRA = 1 << 9
+    QGL__K_EXTRA = 1 << 9,
+    QGL__K_PLANE = 1 << 10    /* view-invariant weights, as QGL__KF_PLANE */
 };
 
 #define QGL__MAX_PROGRAMS 64
@@ -553,8 +558,11 @@ int qgl__key_slots(const qgl__key *key);
 /* immediate.c: bytes of one component of a GL array type (0 for a type arrays cannot have). */
 size_t qgl__type_size(GLenum type);
 
-/* shader.c: the weights as a GLSL function, vec4 quad_weights(vec4 sx, vec4 sy), GLSL 1.20 and later. */
+/* shader.c: the weights as a GLSL function, vec4 quad_weights(vec4 sx, vec4 sy), GLSL 1.20 and
+ * later; and the bilinear patch's hit, vec4 patch_hit(vec4 sx, vec4 sy, vec4 w, vec4 z, out
+ * float depth) (its bilinear weights and window depth), after qgl__glsl_weights. */
 extern const char qgl__glsl_weights[];
+extern const char qgl__glsl_patch[];
 /* shader.c: compile count sources as one shader / link a program; on failure 0, with the
  * driver's log in log (size bytes). Both shader paths report failures their own way. */
 GLuint qgl__shader_compile(struct qgl__gl *gl, GLenum type, int count, const char *const *src, char *log, int size);

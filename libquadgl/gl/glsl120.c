@@ -13,7 +13,12 @@
  * positive multiple of the core's homogeneous s~_i the geometry shader path uses (x and y in
  * pixel units, scaled by the viewport's half size); the
  * corner values are constant over each triangle and reach the fragment shader unchanged.
- * The fragment shader is the core's robust formula in float. Programs are generated from
+ * The fragment shader is the core's robust formula in float. With the view-invariant weights
+ * (QGL__K_PLANE) a planar quad's cover is computed in its own plane (qgl_plane_cover) and sent
+ * in object space, each vertex with its s_i = q_i - q_v (in-plane corners less its own
+ * in-plane position, affine on the surface) instead of the corner positions; a non-planar quad keeps the screen cover and g,
+ * adds the corners' in-plane coordinates, and the fragment shader weighs its ray's hit on the
+ * bilinear patch (as the geometry shader path does). Programs are generated from
  * draw.c's state key (only the features this file knows: colour, flat, one 2D texture
  * unit with MODULATE / REPLACE, eq. 4 depth, discard) and cached; a key with other bits, or
  * a program the driver refuses (GL 2.0 guarantees only 32 varying floats; colour plus
@@ -21,6 +26,7 @@
  * triangles are streamed from our own buffer behind our own object; without them (a real
  * GL 2.x context) they go as immediate-mode calls, and the current values of the generic
  * attributes we used are put back afterwards. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,10 +35,12 @@
 
 /* Key bits this file implements; any other bit (a later feature) is declined. */
 #define KNOWN_KEY (QGL__K_COLOR | QGL__K_FLAT | QGL__K_TEX | QGL__K_REPLACE | QGL__K_NOALPHA | QGL__K_DEPTH | \
-                   QGL__K_DISCARD | (3u << QGL__K_CORNER_SHIFT))
+                   QGL__K_DISCARD | QGL__K_PLANE | (3u << QGL__K_CORNER_SHIFT))
 
-/* Generic attribute locations: corner positions, corner colours, corner texture coordinates. */
-enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, NLOC = 13 };
+/* Generic attribute locations: corner positions (with the in-plane cover, the vertex's s_i in
+ * the first two), corner colours, corner texture coordinates, and for the patch form the
+ * corners' in-plane x and y. */
+enum { LOC_POS = 1, LOC_COL = 5, LOC_TEX = 9, LOC_PLANE = 13, NLOC = 15 };
 
 #define MAX_PROGRAMS 32
 
@@ -45,8 +53,16 @@ struct qgl__glsl120 {
 };
 
 static const char vs_src[] =
-    "attribute vec4 a_p0, a_p1, a_p2, a_p3;\n"
     "varying vec4 v_g01, v_g23;\n"
+    "#if PLANE_COVER\n"
+    "attribute vec4 a_s01, a_s23;\n"
+    "#else\n"
+    "attribute vec4 a_p0, a_p1, a_p2, a_p3;\n"
+    "#endif\n"
+    "#if PLANE && !PLANE_COVER\n"
+    "attribute vec4 a_qx, a_qy;\n"
+    "varying vec4 v_qx, v_qy;\n"
+    "#endif\n"
     "#if COLOR && FLAT\n"
     "attribute vec4 a_c0;\n"
     "varying vec4 v_flat;\n"
@@ -67,10 +83,19 @@ static const char vs_src[] =
     "void main() {\n"
     "    vec4 X = ftransform();\n"
     "    gl_Position = X;\n"
+    "#if PLANE && !PLANE_COVER\n"
+    "    v_qx = a_qx;\n"
+    "    v_qy = a_qy;\n"
+    "#endif\n"
+    "#if PLANE_COVER\n"
+    "    v_g01 = a_s01;\n"
+    "    v_g23 = a_s23;\n"
+    "#else\n"
     "    vec4 C0 = gl_ModelViewProjectionMatrix * a_p0, C1 = gl_ModelViewProjectionMatrix * a_p1;\n"
     "    vec4 C2 = gl_ModelViewProjectionMatrix * a_p2, C3 = gl_ModelViewProjectionMatrix * a_p3;\n"
     "    v_g01 = vec4(g(C0, X), g(C1, X));\n"
     "    v_g23 = vec4(g(C2, X), g(C3, X));\n"
+    "#endif\n"
     "#if COLOR && FLAT\n"
     "    v_flat = clamp(a_c0, 0.0, 1.0);\n"
     "#elif COLOR\n"
@@ -90,9 +115,12 @@ static const char vs_src[] =
     "}\n";
 
 /* The fragment shader; quad_weights() (shader.c's qgl__glsl_weights, the core's weights in
- * GLSL) is put in front of it by compile(). */
+ * GLSL) and patch_hit() (qgl__glsl_patch) are put in front of it by compile(). */
 static const char fs_src[] =
     "varying vec4 v_g01, v_g23;\n"
+    "#if PLANE && !PLANE_COVER\n"
+    "varying vec4 v_qx, v_qy;\n"
+    "#endif\n"
     "#if COLOR && FLAT\n"
     "varying vec4 v_flat;\n"
     "#elif COLOR\n"
@@ -105,12 +133,26 @@ static const char fs_src[] =
     "#if DEPTH\n"
     "varying vec4 v_w, v_z;\n"
     "#endif\n"
+    "#if PLANE_COVER\n"
+    "vec4 weights() {\n"
+    "    return quad_weights(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
+    "}\n"
+    "#elif PLANE\n"
+    "float patch_depth;\n"
+    "vec4 weights() {\n"
+    "    vec4 sx = vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), sy = vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w);\n"
+    "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
+    "    vec4 b = patch_hit(sx * k, sy * k, v_w, v_z, patch_depth);\n"
+    "    return quad_weights(v_qx - dot(b, v_qx), v_qy - dot(b, v_qy));\n"
+    "}\n"
+    "#else\n"
     "vec4 weights() {\n"
     "    return quad_weights_any(vec4(v_g01.x, v_g01.z, v_g23.x, v_g23.z), vec4(v_g01.y, v_g01.w, v_g23.y, v_g23.w));\n"
     "}\n"
+    "#endif\n"
     "void main() {\n"
     "    vec4 lam = weights();\n"
-    "#if DISCARD\n"
+    "#if DISCARD && !PLANE_COVER\n"
     "    if (any(lessThan(lam, vec4(0.0)))) discard;\n"
     "#endif\n"
     "#if COLOR && FLAT\n"
@@ -132,7 +174,9 @@ static const char fs_src[] =
     "#endif\n"
     "#endif\n"
     "    gl_FragColor = col;\n"
-    "#if DEPTH\n"
+    "#if DEPTH && PLANE\n"
+    "    gl_FragDepth = patch_depth;\n"
+    "#elif DEPTH\n"
     "    vec4 scr = v_w * lam;\n"
     "    gl_FragDepth = dot(scr, v_z) / dot(scr, vec4(1.0));\n"
     "#endif\n"
@@ -143,15 +187,17 @@ static const char fs_src[] =
 static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, const char *body)
 {
     struct qgl__gl *gl = &ctx->gl;
-    char head[256];
+    char head[320];
+    int plane = !!(key & QGL__K_PLANE), depth = !!(key & QGL__K_DEPTH);
     snprintf(head, sizeof head,
              "#version 120\n#define COLOR %d\n#define FLAT %d\n#define TEX %d\n#define REPLACE %d\n"
-             "#define NOALPHA %d\n#define DEPTH %d\n#define DISCARD %d\n",
+             "#define NOALPHA %d\n#define DEPTH %d\n#define DISCARD %d\n#define PLANE %d\n#define PLANE_COVER %d\n",
              !!(key & QGL__K_COLOR), !!(key & QGL__K_FLAT), !!(key & QGL__K_TEX), !!(key & QGL__K_REPLACE),
-             !!(key & QGL__K_NOALPHA), !!(key & QGL__K_DEPTH), !!(key & QGL__K_DISCARD));
-    const char *src[3] = {head, type == GL_FRAGMENT_SHADER ? qgl__glsl_weights : "", body};
+             !!(key & QGL__K_NOALPHA), depth, !!(key & QGL__K_DISCARD), plane, plane && !depth);
+    int fs = type == GL_FRAGMENT_SHADER;
+    const char *src[4] = {head, fs ? qgl__glsl_weights : "", fs && plane && depth ? qgl__glsl_patch : "", body};
     char log[2048];
-    GLuint sh = qgl__shader_compile(gl, type, 3, src, log, sizeof log);
+    GLuint sh = qgl__shader_compile(gl, type, 4, src, log, sizeof log);
     if (!sh && getenv("QUADGL_DEBUG"))
         fprintf(stderr, "quadgl: GLSL 1.20 shader (key %#x) failed:\n%s\n", key, log);
     return sh;
@@ -159,10 +205,15 @@ static GLuint compile(qgl_context *ctx, GLenum type, unsigned key, const char *b
 
 static void bind_locations(struct qgl__gl *gl, GLuint prog)
 {
-    static const char *const names[NLOC - 1] = {"a_p0", "a_p1", "a_p2", "a_p3", "a_c0", "a_c1",
-                                                "a_c2", "a_c3", "a_t0", "a_t1", "a_t2", "a_t3"};
-    for (int i = 0; i < NLOC - 1; i++)
-        gl->BindAttribLocation(prog, (GLuint)(LOC_POS + i), names[i]);
+    static const struct {
+        const char *name;
+        GLuint loc;
+    } names[] = {{"a_p0", LOC_POS},     {"a_p1", LOC_POS + 1}, {"a_p2", LOC_POS + 2},   {"a_p3", LOC_POS + 3},
+                 {"a_s01", LOC_POS},    {"a_s23", LOC_POS + 1}, {"a_c0", LOC_COL},      {"a_c1", LOC_COL + 1},
+                 {"a_c2", LOC_COL + 2}, {"a_c3", LOC_COL + 3}, {"a_t0", LOC_TEX},      {"a_t1", LOC_TEX + 1},
+                 {"a_t2", LOC_TEX + 2}, {"a_t3", LOC_TEX + 3}, {"a_qx", LOC_PLANE},    {"a_qy", LOC_PLANE + 1}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        gl->BindAttribLocation(prog, names[i].loc, names[i].name);
 }
 
 static GLuint link(qgl_context *ctx, unsigned key, GLuint vs, GLuint fs)
@@ -280,6 +331,9 @@ void qgl__glsl120_free(qgl_context *ctx)
 /* ---- the cover, emitted vertex by vertex ------------------------------------------------------ */
 
 typedef struct layout {
+    int cover;      /* the in-plane cover: each vertex carries its own s_i (2 vec4s) */
+    int npos;       /* corner positions (4, for g; 0 with the in-plane cover) */
+    int nplane;     /* the corners' in-plane x and y (2, the patch form), or none */
     int ncol, ntex; /* corner colours (0, 1 flat or 4) and texture coordinates (0 or 4) */
     int stride;     /* floats per emitted vertex */
 } layout;
@@ -287,9 +341,13 @@ typedef struct layout {
 static layout layout_of(unsigned key)
 {
     layout l;
+    int plane = (key & QGL__K_PLANE) != 0;
+    l.cover = plane && !(key & QGL__K_DEPTH);
+    l.npos = l.cover ? 0 : 4;
+    l.nplane = plane && !l.cover ? 2 : 0;
     l.ncol = !(key & QGL__K_COLOR) ? 0 : (key & QGL__K_FLAT) ? 1 : 4;
     l.ntex = key & QGL__K_TEX ? 4 : 0;
-    l.stride = 4 * (1 + 4 + l.ncol + l.ntex);
+    l.stride = 4 * (1 + 2 * l.cover + l.npos + l.nplane + l.ncol + l.ntex);
     return l;
 }
 
@@ -298,14 +356,53 @@ static void copy4(float *d, const float *s)
     d[0] = s[0], d[1] = s[1], d[2] = s[2], d[3] = s[3];
 }
 
-/* What every vertex of quad q carries after its own position: corner positions, colours,
- * texture coordinates (the current colour when the quads have none). */
-static void corner_block(const qgl__verts *v, const size_t idx[4], const layout *l, int flat, const float cur[4],
-                         float *out)
+/* A quad's in-plane corners (scaled to at most 1, as the geometry shader does) as the two
+ * vec4s qx, qy, and its plane; 0 when the corners span no plane. A corner at infinity in
+ * object space makes NDC stand in, as in the geometry shader. */
+typedef struct plane_quad {
+    qgl_plane pl;
+    double scale;
+    float q[2][4];
+} plane_quad;
+
+static int plane_of(const qgl_context *ctx, const qgl__verts *v, const size_t idx[4], plane_quad *pq)
 {
+    double pos[4][3], m = 0;
+    int finite = 1;
     for (int c = 0; c < 4; c++)
+        finite &= v->pos[4 * idx[c] + 3] > 0;
+    for (int c = 0; c < 4; c++) {
+        const float *p = v->pos + 4 * idx[c];
+        const double *h = ctx->clip + 4 * idx[c];
+        double w = finite ? p[3] : h[3];
+        if (!(w > 0))
+            return 0;
+        for (int k = 0; k < 3; k++)
+            pos[c][k] = (finite ? p[k] : h[k]) / w;
+    }
+    if (qgl_plane_frame(pos, &pq->pl) != 0)
+        return 0;
+    for (int c = 0; c < 4; c++)
+        m = fmax(m, fmax(fabs(pq->pl.corner[c][0]), fabs(pq->pl.corner[c][1])));
+    pq->scale = 1 / m;
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 2; k++)
+            pq->q[k][c] = (float)(pq->pl.corner[c][k] * pq->scale);
+    return 1;
+}
+
+/* What every vertex of quad q carries after its own position (and in-plane position): corner
+ * positions, in-plane corners, colours, texture coordinates (the current colour when the
+ * quads have none). */
+static void corner_block(const qgl__verts *v, const size_t idx[4], const layout *l, const plane_quad *pq, int flat,
+                         const float cur[4], float *out)
+{
+    for (int c = 0; c < l->npos; c++)
         copy4(out + 4 * c, v->pos + 4 * idx[c]);
-    out += 16;
+    out += 4 * l->npos;
+    for (int k = 0; k < l->nplane; k++)
+        copy4(out + 4 * k, pq->q[k]);
+    out += 4 * l->nplane;
     for (int c = 0; c < l->ncol; c++) {
         size_t i = idx[l->ncol == 1 ? flat : c];
         copy4(out + 4 * c, v->mask & QGL__A_COLOR ? v->col + 4 * i : cur);
@@ -316,16 +413,15 @@ static void corner_block(const qgl__verts *v, const size_t idx[4], const layout 
         copy4(out + 4 * c, v->mask & QGL__A_TEX0 ? v->tex[0] + 4 * idx[c] : tex_default);
 }
 
-/* Object position of the bow-tie's crossing point: the point of edge (a, a+1) that projects
- * to screen parameter t there (perspective-correct). */
-static void crossing_point(const double clip[4][4], const qgl__verts *v, const size_t idx[4], const qgl_cover *cov,
+/* Object position of the bow-tie's crossing point: the point of edge (a, a+1) at parameter t
+ * there, made homogeneous with w (the clip w for a screen parameter, the object w for an
+ * in-plane one). */
+static void crossing_point(const qgl__verts *v, const size_t idx[4], int a, double t, double wa, double wb,
                            float out[4])
 {
-    int a = cov->cross_edge, b = a + 1;
-    double t = cov->cross_t, wa = clip[a][3], wb = clip[b][3];
     double s = t * wa / ((1 - t) * wb + t * wa);
     for (int k = 0; k < 4; k++)
-        out[k] = (float)((1 - s) * v->pos[4 * idx[a] + k] + s * v->pos[4 * idx[b] + k]);
+        out[k] = (float)((1 - s) * v->pos[4 * idx[a] + k] + s * v->pos[4 * idx[a + 1] + k]);
 }
 
 static int reserve(struct qgl__glsl120 *g, size_t floats)
@@ -341,52 +437,89 @@ static int reserve(struct qgl__glsl120 *g, size_t floats)
     return 1;
 }
 
-/* Append the cover of quad q; returns the number of vertices written, -1 without memory. */
+/* The screen cover of quad q (corners behind the eye: the split, clipped by the driver, the
+ * shader killing what lies outside) and the crossing point's object position; 0 when the
+ * quad has no interior on screen. */
+static int screen_cover(qgl_context *ctx, const qgl__verts *v, const size_t idx[4], qgl_cover *cov, float cross[4])
+{
+    double clip[4][4];
+    for (int c = 0; c < 4; c++)
+        memcpy(clip[c], ctx->clip + 4 * idx[c], sizeof clip[c]);
+    int kind = qgl_classify_clip(clip, cov);
+    if (kind == QGL_QUAD_EXTERNAL) {
+        cov->ntri = 2;
+        static const unsigned char split[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        memcpy(cov->tri, split, sizeof split);
+    } else if (kind < 0 || kind == QGL_QUAD_DEGENERATE) {
+        return 0;
+    } else if (kind == QGL_QUAD_BOWTIE) {
+        int a = cov->cross_edge;
+        crossing_point(v, idx, a, cov->cross_t, clip[a][3], clip[a + 1][3], cross);
+    }
+    return 1;
+}
+
+/* Append the cover of quad q; returns the number of vertices written, -1 without memory. The
+ * in-plane cover is exact whatever the camera (the clipper cuts it where corners are behind
+ * the eye); every vertex then carries its in-plane position too. */
 static int emit_quad(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size_t q, const layout *l,
                      int flat, const float cur[4], size_t at)
 {
     struct qgl__glsl120 *g = ctx->glsl120;
     size_t idx[4];
-    double clip[4][4];
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < 4; c++)
         idx[c] = qgl__corner(topo, q, c);
-        memcpy(clip[c], ctx->clip + 4 * idx[c], sizeof clip[c]);
-    }
     qgl_cover cov;
-    int kind = qgl_classify_clip(clip, &cov);
-    if (kind == QGL_QUAD_EXTERNAL) { /* the clipper cuts the split; the shader kills the outside */
-        cov.ntri = 2;
-        static const unsigned char split[2][3] = {{0, 1, 2}, {0, 2, 3}};
-        memcpy(cov.tri, split, sizeof split);
-    } else if (kind < 0 || kind == QGL_QUAD_DEGENERATE) {
+    plane_quad pq;
+    float cross[4] = {0, 0, 0, 1}, own[5][8];
+    if ((l->nplane || l->cover) && !plane_of(ctx, v, idx, &pq))
+        return 0;
+    if (l->cover) {
+        int kind = qgl_plane_cover(&pq.pl, &cov);
+        if (kind < 0 || kind == QGL_QUAD_DEGENERATE)
+            return 0;
+        int a = cov.cross_edge;
+        if (kind == QGL_QUAD_BOWTIE)
+            crossing_point(v, idx, a, cov.cross_t, v->pos[4 * idx[a] + 3], v->pos[4 * idx[a + 1] + 3], cross);
+        /* each cover vertex's s_i = q_i - q_v, scaled as the corners */
+        for (int c = 0; c < 5; c++)
+            for (int i = 0; i < 4; i++)
+                for (int k = 0; k < 2; k++)
+                    own[c][2 * i + k] = (float)((pq.pl.corner[i][k] - (c < 4 ? pq.pl.corner[c][k] : cov.cross[k])) *
+                                                pq.scale);
+    } else if (!screen_cover(ctx, v, idx, &cov, cross)) {
         return 0;
     }
-    size_t stride = (size_t)l->stride;
+    size_t stride = (size_t)l->stride, head = 4 * (size_t)(1 + 2 * l->cover);
     if (!reserve(g, (at + 3 * (size_t)cov.ntri) * stride))
         return -1;
-    float block[64], cross[4] = {0, 0, 0, 1};
-    corner_block(v, idx, l, flat, cur, block);
-    if (kind == QGL_QUAD_BOWTIE)
-        crossing_point(clip, v, idx, &cov, cross);
+    float block[96];
+    corner_block(v, idx, l, &pq, flat, cur, block);
     float *out = g->buf + at * stride;
     for (int t = 0; t < cov.ntri; t++)
         for (int k = 0; k < 3; k++, out += stride) {
             int c = cov.tri[t][k];
             copy4(out, c == 4 ? cross : v->pos + 4 * idx[c]);
-            memcpy(out + 4, block, (stride - 4) * sizeof(float));
+            if (l->cover)
+                memcpy(out + 4, own[c], sizeof own[c]);
+            memcpy(out + head, block, (stride - head) * sizeof(float));
         }
     return 3 * cov.ntri;
 }
 
 /* ---- submission -------------------------------------------------------------------------------- */
 
-/* The generic locations of the nattr corner attributes of a layout; attribute a sits at
- * float 4 (1 + a) of an emitted vertex. Returns nattr. */
+/* The generic locations of the nattr attributes of a layout after the position; attribute a
+ * sits at float 4 (1 + a) of an emitted vertex. Returns nattr. */
 static int locations(const layout *l, GLuint loc[NLOC - 1])
 {
     int n = 0;
-    for (int c = 0; c < 4; c++)
+    for (int k = 0; k < 2 * l->cover; k++)
+        loc[n++] = (GLuint)(LOC_POS + k);
+    for (int c = 0; c < l->npos; c++)
         loc[n++] = (GLuint)(LOC_POS + c);
+    for (int k = 0; k < l->nplane; k++)
+        loc[n++] = (GLuint)(LOC_PLANE + k);
     for (int c = 0; c < l->ncol; c++)
         loc[n++] = (GLuint)(LOC_COL + c);
     for (int c = 0; c < l->ntex; c++)

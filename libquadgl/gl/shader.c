@@ -27,6 +27,23 @@
  * (in NDC a wide window would squeeze the quad). Clip distances come from the corners' eye positions
  * (exact for planar quads, as the driver's own clipping); a non-planar quad is clipped per
  * fragment at its interpolated eye position instead.
+ * View-invariant forms (QGL__KF_PLANE: AUTO, MVC_PLANE): screen-space weights change with the
+ * camera, weights in the quad's own plane do not. The geometry shader builds the plane frame
+ * of the corners' object positions (core plane.c in float) and, for a planar quad, emits the
+ * quad's cover in that plane (exact whatever the camera: the clipper cuts it where corners are
+ * behind the eye, so nothing outside the quad is drawn and no fragment is killed), each
+ * vertex v carrying s_i = q_i - q_v, the in-plane corners less its own in-plane position, in
+ * gA and gB: affine on the surface, perspective-interpolated they are each fragment's own
+ * s_i exactly, so the fragment shader is the screen form's, and depth is the rasterizer's
+ * own. Where the driver does not clip, s_i / w_v is sent instead, interpolated without
+ * perspective: that is the fragment's s_i times 1 / w of the fragment, a positive factor the
+ * weights do not see, so no division is left. Times the geometric mean of the corners' w it
+ * stays between the square roots of their ratio and its inverse (the corners are scaled to
+ * at most 1, |s_i| <= 2), which keeps the weights' products in float range up to ratios of
+ * about a million; where the driver clips it is interpolated with perspective, at most 2. A non-planar quad keeps
+ * the screen cover and g_i, and the fragment shader intersects its ray with the bilinear patch
+ * of the corners (the exact reference's surface), weighs the hit's projection onto the
+ * best-fit plane and writes the hit's depth.
  * Fragment shader: the core's robust weights in float (tangent of half angles in the
  * non-cancelling form, the limits on corners and on edge segments), then everything the
  * driver interpolates is interpolated with them (colours after lighting, both faces' colours
@@ -122,11 +139,23 @@ static int needs_eye(const qgl__key *k)
     return lit(k) || k->clip || (k->fog && (k->flags & QGL__KF_FOG_DEPTH)) || gen_uses(k, QGL__G_EYE, QGL__G_REFLECT);
 }
 
+/* The view-invariant forms (QGL__KF_PLANE): a planar quad's cover in its plane, a non-planar
+ * quad's hit on its bilinear patch. */
+static int plane_cover(const qgl__key *k)
+{
+    return (k->flags & QGL__KF_PLANE) && !(k->flags & QGL__KF_DEPTH);
+}
+
+static int patch(const qgl__key *k)
+{
+    return (k->flags & QGL__KF_PLANE) && (k->flags & QGL__KF_DEPTH);
+}
+
 int qgl__key_slots(const qgl__key *k)
 {
     int per = k->flags & QGL__KF_FLAT ? 1 : 4;
     int colours = per * (1 + has_secondary(k)) * (two_sided(k) ? 2 : 1);
-    int n = 2 + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
+    int n = (patch(k) ? 4 : 2) + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
     for (int u = 0; u < k->nunits; u++)
         n += k->unit[u].target ? 4 : 0;
     return n;
@@ -226,6 +255,8 @@ static void vs_declarations(sb *b, const qgl__key *k)
         put(b, "out float q_fog;\n");
     if (k->clip)
         put(b, "out vec4 q_eye;\n");
+    if (k->flags & QGL__KF_PLANE)
+        put(b, "out vec4 q_obj;\n");
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
             put(b, "out vec4 q_tex%d;\n", u);
@@ -269,6 +300,8 @@ static void vs_source(sb *b, const qgl__key *k)
         put(b, "    q_fog = %s;\n", k->flags & QGL__KF_FOG_DEPTH ? "abs(eye4.z)" : "gl_FogCoord");
     if (k->clip)
         put(b, "    q_eye = eye4;\n");
+    if (k->flags & QGL__KF_PLANE)
+        put(b, "    q_obj = gl_Vertex;\n");
     if (gen_uses(k, QGL__G_SPHERE, QGL__G_REFLECT)) {
         put(b, "    vec3 refl = reflect(normalize(eye), n);\n");
         put(b, "    float sm = 2.0 * sqrt(refl.x * refl.x + refl.y * refl.y + (refl.z + 1.0) * (refl.z + 1.0));\n");
@@ -340,39 +373,133 @@ static void varyings(sb *b, const qgl__key *k, const char *dir)
     flat_var v[16];
     int n = flat_vars(k, v);
     put(b, "%s%s vec4 gA, gB;\n", persp(k) ? "" : "noperspective ", dir);
+    if (patch(k))
+        put(b, "flat %s vec4 f_qx, f_qy;\n", dir);
     for (int i = 0; i < n; i++)
         put(b, "flat %s %s f_%s;\n", dir, flat_type(k, &v[i]), v[i].name);
     if (k->flags & QGL__KF_DEPTH)
         put(b, "flat %s vec4 f_w, f_z;\n", dir);
 }
 
+/* The quad's plane frame from its object corners (core plane.c in float): origin at the
+ * centroid, normal the longest of the diagonals' cross product and the corner normals, first
+ * axis along the longer diagonal; Q[i] the corners' in-plane coordinates scaled to at most 1
+ * (the weights' products stay in float range and the weights do not change), diag the shorter
+ * diagonal. A corner at infinity in object space (w <= 0) makes NDC stand in for the object
+ * positions: a valid picture, as view-dependent as the screen-space weights. False when the
+ * corners span no plane. */
+static const char gs_plane[] =
+    "bool plane_frame() {\n"
+    "    vec3 d[4], o = vec3(0.0);\n"
+    /* a corner at infinity in object space: NDC stands in (planar alike, but not rigid) */
+    "    bool finite = all(greaterThan(vec4(q_obj[0].w, q_obj[1].w, q_obj[2].w, q_obj[3].w), vec4(0.0)));\n"
+    "    for (int i = 0; i < 4; i++) {\n"
+    "        vec4 h = finite ? q_obj[i] : C[i];\n"
+    "        if (!(h.w > 0.0)) return false;\n"
+    "        d[i] = h.xyz / h.w;\n"
+    "        o += d[i];\n"
+    "    }\n"
+    "    o *= 0.25;\n"
+    "    float m = 0.0;\n"
+    "    for (int i = 0; i < 4; i++) { d[i] -= o; m = max(m, max(max(abs(d[i].x), abs(d[i].y)), abs(d[i].z))); }\n"
+    "    if (!(m > 0.0)) return false;\n"
+    "    for (int i = 0; i < 4; i++) d[i] /= m;\n"
+    "    vec3 a = d[2] - d[0], b = d[3] - d[1], n = cross(a, b);\n"
+    "    float best = dot(n, n);\n"
+    "    for (int i = 0; i < 4; i++) {\n"
+    "        vec3 c = cross(d[(i + 1) & 3] - d[i], d[(i + 3) & 3] - d[i]);\n"
+    "        if (dot(c, c) > best) { best = dot(c, c); n = c; }\n"
+    "    }\n"
+    "    if (!(best > 1e-24)) return false;\n"
+    "    n *= inversesqrt(best);\n"
+    "    vec3 g = dot(a, a) >= dot(b, b) ? a : b;\n"
+    "    vec3 u = normalize(g - dot(g, n) * n), v = cross(n, u);\n"
+    "    float r = 0.0;\n"
+    "    for (int i = 0; i < 4; i++) { Q[i] = vec2(dot(d[i], u), dot(d[i], v)); r = max(r, max(abs(Q[i].x), abs(Q[i].y))); }\n"
+    "    for (int i = 0; i < 4; i++) Q[i] /= r;\n"
+    "    c_qx = vec4(Q[0].x, Q[1].x, Q[2].x, Q[3].x);\n"
+    "    c_qy = vec4(Q[0].y, Q[1].y, Q[2].y, Q[3].y);\n"
+    "    diag = dot(b, b) < dot(a, a) ? 1 : 0;\n"
+    "    return true;\n"
+    "}\n";
+
+/* The cover of the 2D quad v (the screen quad, or the quad in its plane): convex along
+ * diagonal diag, concave through the reflex corner, a bow-tie as its two lobes. */
 static const char gs_cover[] =
     "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
     /* triangles (a, a+1, a+2) and (a, a+2, a+3) as one strip: four vertices, not six */
     "void quad(int a) { emit((a + 1) & 3); emit((a + 2) & 3); emit(a); emit((a + 3) & 3); EndPrimitive(); }\n"
     "float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }\n"
-    /* C[4] (and its eye position) := the clip point on edge a->b at screen parameter t */
+    /* C[4] (its eye and in-plane positions) := the crossing point, at parameter t along
+     * a->b in the plane it was found in: on screen, made perspective-correct with the clip w;
+     * in the plane, affine, made homogeneous with the object w (clip and eye positions are
+     * linear in the homogeneous object position) */
     "void set_cross(int a, int b, float t) {\n"
-    "    float s = t * C[a].w / ((1.0 - t) * C[b].w + t * C[a].w);\n"
+    "#if PLANE_COVER\n"
+    "    float wa = q_obj[a].w, wb = q_obj[b].w;\n"
+    "    Q[4] = mix(Q[a], Q[b], t);\n"
+    "#else\n"
+    "    float wa = C[a].w, wb = C[b].w;\n"
+    "#endif\n"
+    "    float s = t * wa / ((1.0 - t) * wb + t * wa);\n"
     "    C[4] = mix(C[a], C[b], s);\n"
     "#if CLIP\n"
     "    E[4] = mix(E[a], E[b], s);\n"
     "#endif\n"
     "}\n"
-    /* screen parameters (t on a->b, u on c->d) of the crossing of two segments */
+    /* parameters (t on a->b, u on c->d) of the crossing of two segments */
     "vec2 crossing(vec2 a, vec2 b, vec2 c, vec2 d) {\n"
     "    float den = cross2(b - a, d - c);\n"
     "    if (den == 0.0) return vec2(-1.0);\n"
     "    return vec2(cross2(c - a, d - c), cross2(c - a, b - a)) / den;\n"
     "}\n"
     "bool inside01(vec2 tu) { return all(greaterThanEqual(tu, vec2(0.0))) && all(lessThanEqual(tu, vec2(1.0))); }\n"
+    "void cover(vec2 v[4], int diag) {\n"
+    "    int npos = 0, nneg = 0, ipos = 0, ineg = 0;\n"
+    "    for (int i = 0; i < 4; i++) {\n"
+    "        float k = cross2(v[i] - v[(i + 3) & 3], v[(i + 1) & 3] - v[i]);\n"
+    "        if (k > 0.0) { npos++; ipos = i; }\n"
+    "        if (k < 0.0) { nneg++; ineg = i; }\n"
+    "    }\n"
+    "    if (npos + nneg == 0) return;\n"
+    "    if (npos == 0 || nneg == 0) { quad(diag); return; }\n"
+    "    if (npos != nneg) {\n"
+    "        quad(npos < nneg ? ipos : ineg);\n"
+    "        return;\n"
+    "    }\n"
+    "    vec2 tu = crossing(v[0], v[1], v[2], v[3]);\n"
+    "    if (inside01(tu)) {\n"
+    "        set_cross(0, 1, tu.x);\n"
+    "        tri(4, 1, 2); tri(4, 3, 0);\n"
+    "        return;\n"
+    "    }\n"
+    "    tu = crossing(v[1], v[2], v[3], v[0]);\n"
+    "    if (inside01(tu)) {\n"
+    "        set_cross(1, 2, tu.x);\n"
+    "        tri(4, 2, 3); tri(4, 0, 1);\n"
+    "        return;\n"
+    "    }\n"
+    "    quad(diag);\n"
+    "}\n"
     "void main() {\n"
     "    for (int i = 0; i < 4; i++) C[i] = gl_in[i].gl_Position;\n"
     "#if CLIP\n"
     "    for (int i = 0; i < 4; i++) E[i] = q_eye[i];\n"
     "#endif\n"
     "    corners();\n"
+    "#if PLANE\n"
+    "    if (!plane_frame()) return;\n"
+    "#endif\n"
     "    vec4 w = vec4(C[0].w, C[1].w, C[2].w, C[3].w);\n"
+    /* in the plane the cover is exact whatever the camera: the clipper cuts it */
+    "#if PLANE_COVER\n"
+    "    if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
+    "#if !PERSP\n"
+    "    w_mean = sqrt(min(min(w.x, w.y), min(w.z, w.w)) * max(max(w.x, w.y), max(w.z, w.w)));\n"
+    "#endif\n"
+    "    vec2 q[4] = vec2[4](Q[0], Q[1], Q[2], Q[3]);\n"
+    "    cover(q, diag);\n"
+    "#else\n"
     "    if (any(lessThanEqual(w, vec4(0.0)))) {\n"
     "        if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
     "        quad(0);\n"
@@ -393,31 +520,8 @@ static const char gs_cover[] =
     "    for (int i = 0; i < 4; i++) bound = max(bound, w[i] * dot(max(v[i] - lo, hi - v[i]), u_px));\n"
     "    g_scale = u_px.xyxy / max(bound, 1e-30);\n"
     "#endif\n"
-    "    int npos = 0, nneg = 0, ipos = 0, ineg = 0;\n"
-    "    for (int i = 0; i < 4; i++) {\n"
-    "        float k = cross2(v[i] - v[(i + 3) & 3], v[(i + 1) & 3] - v[i]);\n"
-    "        if (k > 0.0) { npos++; ipos = i; }\n"
-    "        if (k < 0.0) { nneg++; ineg = i; }\n"
-    "    }\n"
-    "    if (npos + nneg == 0) return;\n"
-    "    if (npos == 0 || nneg == 0) { quad(0); return; }\n"
-    "    if (npos != nneg) {\n"
-    "        quad(npos < nneg ? ipos : ineg);\n"
-    "        return;\n"
-    "    }\n"
-    "    vec2 tu = crossing(v[0], v[1], v[2], v[3]);\n"
-    "    if (inside01(tu)) {\n"
-    "        set_cross(0, 1, tu.x);\n"
-    "        tri(4, 1, 2); tri(4, 3, 0);\n"
-    "        return;\n"
-    "    }\n"
-    "    tu = crossing(v[1], v[2], v[3], v[0]);\n"
-    "    if (inside01(tu)) {\n"
-    "        set_cross(1, 2, tu.x);\n"
-    "        tri(4, 2, 3); tri(4, 0, 1);\n"
-    "        return;\n"
-    "    }\n"
-    "    quad(0);\n"
+    "    cover(v, 0);\n"
+    "#endif\n"
     "}\n";
 
 static void gs_source(sb *b, const qgl__key *k)
@@ -425,12 +529,15 @@ static void gs_source(sb *b, const qgl__key *k)
     flat_var v[16];
     int n = flat_vars(k, v);
     int hw_clip = k->clip && !frag_clip(k);
-    put(b, "#version 150 compatibility\n#define CLIP %d\n#define PERSP %d\n", k->clip ? 1 : 0, persp(k));
+    put(b, "#version 150 compatibility\n#define CLIP %d\n#define PERSP %d\n#define PLANE %d\n#define PLANE_COVER %d\n",
+        k->clip ? 1 : 0, persp(k), (k->flags & QGL__KF_PLANE) != 0, plane_cover(k));
     put(b, "layout(lines_adjacency) in;\nlayout(triangle_strip, max_vertices = 6) out;\n");
     for (int i = 0; i < n; i++)
         put(b, "in %s q_%s[];\n", v[i].scalar ? "float" : "vec4", v[i].name);
     if (k->clip && !frag_clip(k))
         put(b, "in vec4 q_eye[];\n");
+    if (k->flags & QGL__KF_PLANE)
+        put(b, "in vec4 q_obj[];\nvec2 Q[5];\nvec4 c_qx, c_qy;\nint diag;\nfloat w_mean;\n");
     varyings(b, k, "out");
     put(b, "uniform vec2 u_px;\nvec4 C[5];\nvec4 g_scale;\n");
     if (k->clip)
@@ -456,7 +563,12 @@ static void gs_source(sb *b, const qgl__key *k)
                "           * gl_DepthRange.diff + (gl_DepthRange.near + gl_DepthRange.far)) * 0.5;\n");
     put(b, "}\n");
     put(b, "void emit(int k) {\n    vec4 X = C[k];\n    gl_Position = X;\n");
-    if (persp(k)) {
+    if (patch(k))
+        put(b, "    f_qx = c_qx;\n    f_qy = c_qy;\n");
+    if (plane_cover(k)) {
+        put(b, "    float h = %s;\n", persp(k) ? "1.0" : "w_mean / X.w");
+        put(b, "    gA = vec4(Q[0] - Q[k], Q[1] - Q[k]) * h;\n    gB = vec4(Q[2] - Q[k], Q[3] - Q[k]) * h;\n");
+    } else if (persp(k)) {
         put(b, "    gA = vec4(C[0].xy * X.w - X.xy * C[0].w, C[1].xy * X.w - X.xy * C[1].w) * u_px.xyxy;\n");
         put(b, "    gB = vec4(C[2].xy * X.w - X.xy * C[2].w, C[3].xy * X.w - X.xy * C[3].w) * u_px.xyxy;\n");
     } else {
@@ -477,6 +589,8 @@ static void gs_source(sb *b, const qgl__key *k)
     if (k->flags & QGL__KF_DEPTH)
         put(b, "    f_w = c_w;\n    f_z = c_z;\n");
     put(b, "    EmitVertex();\n}\n");
+    if (k->flags & QGL__KF_PLANE)
+        put(b, "%s", gs_plane);
     put(b, "%s", gs_cover);
 }
 
@@ -517,9 +631,65 @@ const char qgl__glsl_weights[] =
     "    return quad_weights(sx * k, sy * k);\n"
     "}\n";
 
+/* The hit of the fragment's ray on the bilinear patch of the corners (the exact reference's
+ * construction, sw_exact.c, in float): with the corners' s~ (sx, sy; any common positive
+ * scale), the patch point's bilinear combination of them vanishes, which leaves a quadratic
+ * in v, solved in the cancellation-free form (both roots from q = -(k1 + sign(k1) sqrt(disc))
+ * / 2; as the patch flattens one runs off to infinity and the other tends to the linear
+ * root), u by least squares along the v-line. Of the roots within the square (a small
+ * margin for rounding) the nearer one wins; with none, the one nearer the square, clamped.
+ * Returns the hit's bilinear weights; depth receives its window depth from the corners' clip
+ * w and window depths z. */
+const char qgl__glsl_patch[] =
+    "float qgl_cross(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }\n"
+    "vec4 qgl_bilinear(vec2 uv) {\n"
+    "    uv = clamp(uv, 0.0, 1.0);\n"
+    "    return vec4((1.0 - uv.x) * (1.0 - uv.y), uv.x * (1.0 - uv.y), uv.x * uv.y, (1.0 - uv.x) * uv.y);\n"
+    "}\n"
+    "vec2 qgl_root(vec2 s0, vec2 e1, vec2 e3, vec2 g, float v) {\n"
+    "    vec2 d = e1 + v * g, n = s0 + v * e3;\n"
+    "    return vec2(-dot(n, d) / dot(d, d), v);\n"
+    "}\n"
+    "float qgl_outside(vec2 uv) {\n"
+    "    vec2 o = max(-uv, uv - 1.0);\n"
+    "    float m = max(o.x, o.y);\n"
+    "    return m == m ? m : 1e30;\n"
+    "}\n"
+    "vec4 patch_hit(vec4 sx, vec4 sy, vec4 w, vec4 z, out float depth) {\n"
+    "    vec2 s0 = vec2(sx.x, sy.x), e1 = vec2(sx.y, sy.y) - s0, e3 = vec2(sx.w, sy.w) - s0;\n"
+    "    vec2 g = vec2(sx.x - sx.y + sx.z - sx.w, sy.x - sy.y + sy.z - sy.w);\n"
+    "    float k2 = qgl_cross(e3, g), k1 = qgl_cross(s0, g) + qgl_cross(e3, e1), k0 = qgl_cross(s0, e1);\n"
+    "    float q = -0.5 * (k1 + (k1 < 0.0 ? -1.0 : 1.0) * sqrt(max(k1 * k1 - 4.0 * k2 * k0, 0.0)));\n"
+    "    vec2 a = qgl_root(s0, e1, e3, g, k0 / q), b = qgl_root(s0, e1, e3, g, q / k2);\n"
+    "    float oa = qgl_outside(a), ob = qgl_outside(b);\n"
+    "    vec4 ba = qgl_bilinear(a) * w, bb = qgl_bilinear(b) * w;\n"
+    /* the nearer of two hits by cross-multiplied depths (the w sums are positive) */
+    "    float na = dot(ba, z), da = dot(ba, vec4(1.0)), nb = dot(bb, z), db = dot(bb, vec4(1.0));\n"
+    "    bool in_a = oa <= 1e-3, in_b = ob <= 1e-3;\n"
+    "    bool take_b = in_b ? (!in_a || nb * da < na * db) : (!in_a && ob < oa);\n"
+    "    depth = take_b ? nb / db : na / da;\n"
+    "    return qgl_bilinear(take_b ? b : a);\n"
+    "}\n";
+
 static const char fs_weights[] =
     "vec4 weights() {\n"
     "    return QGL_WEIGHTS(vec4(gA.x, gA.z, gB.x, gB.z), vec4(gA.y, gA.w, gB.y, gB.w));\n"
+    "}\n";
+
+/* The patch form: the hit's projection onto the plane, weighed there (the hit's depth and
+ * bilinear weights are kept for gl_FragDepth and clip planes). */
+static const char fs_weights_patch[] =
+    "float patch_depth;\n"
+    "vec4 patch_b;\n"
+    "vec4 weights() {\n"
+    "    vec4 sx = vec4(gA.x, gA.z, gB.x, gB.z), sy = vec4(gA.y, gA.w, gB.y, gB.w);\n"
+    "#if PERSP\n"
+    "    float k = 1.0 / dot(abs(sx) + abs(sy), vec4(1.0));\n"
+    "    sx *= k;\n"
+    "    sy *= k;\n"
+    "#endif\n"
+    "    patch_b = patch_hit(sx, sy, f_w, f_z, patch_depth);\n"
+    "    return quad_weights(f_qx - dot(patch_b, f_qx), f_qy - dot(patch_b, f_qy));\n"
     "}\n";
 
 static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sampler3D", "samplerCube", "sampler2DRect"};
@@ -672,18 +842,25 @@ static void fs_colour(sb *b, const qgl__key *k, const char *name, const char *fr
 
 static void fs_source(sb *b, const qgl__key *k)
 {
-    put(b, "#version 150 compatibility\n");
+    put(b, "#version 150 compatibility\n#define PERSP %d\n", persp(k));
     varyings(b, k, "in");
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
             put(b, "uniform %s u_tex%d;\n", sampler_type[k->unit[u].target], u);
-    put(b, "#define QGL_WEIGHTS %s\n", persp(k) ? "quad_weights_any" : "quad_weights");
-    put(b, "%s%s", qgl__glsl_weights, fs_weights);
+    /* in-plane s_i are bounded by the quad's scaled size: no normalisation */
+    put(b, "#define QGL_WEIGHTS %s\n", persp(k) && !plane_cover(k) ? "quad_weights_any" : "quad_weights");
+    put(b, "%s", qgl__glsl_weights);
+    if (patch(k))
+        put(b, "%s%s", qgl__glsl_patch, fs_weights_patch);
+    else
+        put(b, "%s", fs_weights);
     put(b, "void main() {\n    vec4 lam = weights();\n");
-    if (k->flags & QGL__KF_DISCARD)
+    /* the cover in the plane is exact: nothing of it lies outside the quad */
+    if ((k->flags & QGL__KF_DISCARD) && !plane_cover(k))
         put(b, "    if (any(lessThan(lam, vec4(0.0)))) discard;\n");
     if (frag_clip(k)) {
-        put(b, "    vec4 eye = f_eye * lam;\n");
+        /* the in-plane weights reproduce the projection only: the patch point's own */
+        put(b, "    vec4 eye = f_eye * %s;\n", patch(k) ? "patch_b" : "lam");
         for (int p = 0; p < 8; p++)
             if ((k->clip >> p) & 1)
                 put(b, "    if (dot(gl_ClipPlane[%d], eye) < 0.0) discard;\n", p);
@@ -703,7 +880,9 @@ static void fs_source(sb *b, const qgl__key *k)
     if (k->fog)
         fs_fog(b, k);
     put(b, "    gl_FragColor = col;\n");
-    if (k->flags & QGL__KF_DEPTH)
+    if (patch(k))
+        put(b, "    gl_FragDepth = patch_depth;\n");
+    else if (k->flags & QGL__KF_DEPTH)
         put(b, "    vec4 scr = f_w * lam;\n    gl_FragDepth = dot(scr, f_z) / dot(scr, vec4(1.0));\n");
     put(b, "}\n");
 }

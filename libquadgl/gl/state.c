@@ -380,7 +380,7 @@ static int query_ffp(qgl_context *ctx, qgl__state *st)
         ok = 0;
     /* the worst case of this state's programs (smooth, non-planar) must fit the varyings */
     qgl__key worst = *k;
-    worst.flags |= QGL__KF_DEPTH;
+    worst.flags |= QGL__KF_DEPTH | QGL__KF_PLANE;
     if (qgl__key_slots(&worst) > 30)
         ok = 0;
     return ok;

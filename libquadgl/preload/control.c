@@ -60,7 +60,7 @@ static void pl_read_method(const char *s)
     static const struct {
         const char *name;
         int method;
-    } names[] = {{"auto", 0}, {"mvc", 1}, {"split", 2}, {"subdiv", 3}};
+    } names[] = {{"auto", 0}, {"mvc", 1}, {"split", 2}, {"subdiv", 3}, {"mvcplane", 4}};
     if (!s || !*s)
         return;
     if (strcmp(s, "off") == 0) {

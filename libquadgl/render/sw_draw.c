@@ -1,11 +1,12 @@
 /* sw_draw.c: qgl_sw_draw, the method dispatch, and the triangle-based methods.
  *
- * Per quad: the per-pixel methods (mvc, mvc64, invbilinear, projective, exact) get a quad
+ * Per quad: the per-pixel methods (mvc, mvc64, invbilinear, projective, exact, mvcpatch) get a quad
  * set up once (sw_raster.c) and scan it; the splits hand two of its triangles to the
  * triangle rasterizer; bilinear:N and adaptive build a triangle soup with the core's
  * subdivisions (corners carry clip position and attributes, both subdivided bilinearly,
  * which equals subdividing in object space since the projection is linear on homogeneous
- * coordinates) and rasterize it the same way. */
+ * coordinates) and rasterize it the same way; mvcplane and invbilinearplane rasterize the
+ * quad's in-plane cover (sw_plane.c). */
 #include "sw_internal.h"
 
 #include <stdlib.h>
@@ -106,6 +107,9 @@ static void draw_quad(qgl__ctx *c, int quad)
     case QGL_SW_PROJECTIVE:
         qgl__draw_projective(c, &q);
         break;
+    case QGL_SW_MVCPATCH:
+        qgl__draw_mvcpatch(c, &q, quad);
+        break;
     default:
         qgl__draw_exact(c, &q);
         break;
@@ -140,6 +144,8 @@ int qgl_sw_draw(qgl_sw_fb *fb, const qgl_sw_draw_desc *d, qgl_sw_stats *stats)
             draw_split(&c, i, m == QGL_SW_SPLIT02 ? 0 : 1);
         else if (m == QGL_SW_BILINEAR || m == QGL_SW_ADAPTIVE)
             r = draw_subdivided(&c, i, &mesh);
+        else if (m == QGL_SW_MVCPLANE || m == QGL_SW_INVBILINEARPLANE)
+            qgl__draw_plane(&c, i);
         else
             draw_quad(&c, i);
     }

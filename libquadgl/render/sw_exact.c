@@ -115,6 +115,18 @@ static int intersect(const qgl__quad *q, double X, double Y, hit *best)
     return best->zndc < INFINITY;
 }
 
+int qgl__patch_hit(const qgl__quad *q, double X, double Y, double uv[2], double *zndc, int *facing)
+{
+    hit h;
+    if (!intersect(q, X, Y, &h))
+        return 0;
+    uv[0] = h.u;
+    uv[1] = h.v;
+    *zndc = h.zndc;
+    *facing = h.facing;
+    return 1;
+}
+
 void qgl__draw_exact(qgl__ctx *c, const qgl__quad *q)
 {
     float attr[QGL_SW_MAX_ATTR];

@@ -195,6 +195,12 @@ int qgl__row_inner(const qgl__quad *q, double Y, int x0, int x1, int *xa, int *x
 
 /* A triangle of 3 vertices, each clip (4 doubles) then nattr attribute doubles. */
 void qgl__triangle(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nattr);
+/* Turns a fragment's nvary interpolated values into the draw's attributes; 0 drops it. */
+typedef int (*qgl__vary_fn)(void *user, const double *vary, float *attr);
+/* The same triangle with nvary values per vertex after clip, interpolated perspective-
+ * correctly in double and mapped to attributes by map. */
+void qgl__triangle_map(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nvary,
+                       qgl__vary_fn map, void *user);
 
 /* Per-pixel weights for the generic quad scan: fill persp[4] (attribute weights) and *zndc;
  * return 0 to drop the pixel. X, Y are pixel-centre window coordinates. */
@@ -204,10 +210,20 @@ void qgl__quad_scan(qgl__ctx *c, const qgl__quad *q, qgl__weight_fn fn, void *us
 
 /* The methods. */
 void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q);
+/* mvc's kernel for a planar quad every corner of which is in front of the eye, with the
+ * corners' in-plane coordinates: the in-plane weights (sw_mvc.c). */
+void qgl__draw_mvc_plane(qgl__ctx *c, const qgl__quad *q, const double corner[4][2]);
 void qgl__draw_mvc64(qgl__ctx *c, const qgl__quad *q);
 void qgl__draw_invbilinear(qgl__ctx *c, const qgl__quad *q);
 void qgl__draw_projective(qgl__ctx *c, const qgl__quad *q);
 void qgl__draw_exact(qgl__ctx *c, const qgl__quad *q);
+/* The in-plane methods (sw_plane.c): mvcplane and invbilinearplane rasterize the quad's
+ * in-plane cover; mvcpatch weighs the exact reference's hit in the plane. */
+void qgl__draw_plane(qgl__ctx *c, int quad);
+void qgl__draw_mvcpatch(qgl__ctx *c, const qgl__quad *q, int quad);
+/* The bilinear patch's hit at pixel centre (X, Y) (sw_exact.c): parameters, NDC depth and
+ * facing of the nearest visible hit; 0 when the ray misses. */
+int qgl__patch_hit(const qgl__quad *q, double X, double Y, double uv[2], double *zndc, int *facing);
 
 /* A pixel-centre window coordinate along an axis of n pixels, from the axis' centre (px). */
 static inline double qgl__centred(double X, int n)

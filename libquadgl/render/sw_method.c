@@ -21,6 +21,9 @@ static const char *const names[QGL_SW_METHOD_COUNT] = {
     [QGL_SW_INVBILINEAR] = "invbilinear",
     [QGL_SW_PROJECTIVE] = "projective",
     [QGL_SW_EXACT] = "exact",
+    [QGL_SW_MVCPLANE] = "mvcplane",
+    [QGL_SW_MVCPATCH] = "mvcpatch",
+    [QGL_SW_INVBILINEARPLANE] = "invbilinearplane",
 };
 
 const char *qgl_sw_method_name(qgl_sw_method m)

@@ -15,7 +15,15 @@
  * depth sum nu z / sum nu w. Coverage is eq. (12) on the double edge functions shared with
  * every other method. A pixel whose float weights are not finite (its centre on a corner or
  * on an edge line) is handed to qgl_weightsf, which knows the limits. The kernel is compiled
- * for AVX2 and for the baseline and picked at load time (target_clones). */
+ * for AVX2 and for the baseline and picked at load time (target_clones).
+ * The same kernel draws mvcplane's planar quads in front of the eye: there s~_i is
+ * q_i W - P, the in-plane corner q_i against the pixel's in-plane position in homogeneous
+ * form (P, W) = sum_k E_k (q_k, 1), E_k the edge functions of one of the quad's triangles
+ * (its perspective-correct barycentrics, unnormalized), so s~_i = sum_k E_k (q_i - q_k) is
+ * linear in the pixel position too; the scale W cancels in the weights, which then are the
+ * attributes' weights directly (no perspective division), and sum nu z / sum nu w is still
+ * the surface's depth (the in-plane weights reproduce the clip position of a planar quad).
+ * Both coordinates of s~ now change along a row, so A gains a quadratic term. */
 #include "sw_internal.h"
 
 #include <math.h>
@@ -41,7 +49,7 @@
 #endif
 
 typedef struct span_coef {
-    float A0[4], A1[4];         /* A_i = A0 + k A1 */
+    float A0[4], A1[4], A2[4];  /* A_i = A0 + k (A1 + k A2) */
     float D0[4], D1[4], D2[4];  /* D_i = D0 + k (D1 + k D2) */
     float R0[4], R1[4], R2[4];  /* rho_i^2 = R0 + k (R1 + k R2) */
 } span_coef;
@@ -53,27 +61,65 @@ typedef struct span_out {
     float attr[QGL_SW_MAX_ATTR][SPAN];
 } span_out;
 
+/* A planar quad's in-plane form: E_k = a X + b Y + c for the three corners tri[k] of one
+ * triangle, and dq[i][k] = scale (q_i - q_tri[k]), the scale a power of two that keeps s~
+ * near 1 over the framebuffer (the weights do not depend on it). */
+typedef struct plane_form {
+    double e[3][3];
+    double dq[4][3][2];
+    float corner[4][2]; /* for the exact limits of qgl_weights_inplanef */
+    int tri[3];
+} plane_form;
+
 static const float lane_k[SPAN] = {0, 1, 2, 3, 4, 5, 6, 7};
 
-/* The exact values and differences at the span's first pixel centre (X0, Y). */
-static void span_setup(const qgl__quad *q, double X0, double Y, span_coef *s)
+/* s~_i at the span's first pixel centre (X0, Y), and its change per pixel along the row. */
+typedef struct span_src {
+    double sx[4], sy[4], dx[4], dy[4];
+} span_src;
+
+static void screen_src(const qgl__quad *q, double X0, double Y, span_src *s)
 {
-    double sx[4], sy[4], w[4];
     for (int i = 0; i < 4; i++) {
-        w[i] = q->h[i][2];
-        sx[i] = q->h[i][0] - X0 * w[i];
-        sy[i] = q->h[i][1] - Y * w[i];
+        double w = q->h[i][2];
+        s->sx[i] = q->h[i][0] - X0 * w;
+        s->sy[i] = q->h[i][1] - Y * w;
+        s->dx[i] = -w;
+        s->dy[i] = 0;
     }
+}
+
+static void plane_src(const plane_form *pf, double X0, double Y, span_src *s)
+{
+    double E[3];
+    for (int k = 0; k < 3; k++)
+        E[k] = (pf->e[k][0] * X0 + pf->e[k][1] * Y) + pf->e[k][2];
+    for (int i = 0; i < 4; i++) {
+        s->sx[i] = s->sy[i] = s->dx[i] = s->dy[i] = 0;
+        for (int k = 0; k < 3; k++) {
+            s->sx[i] += E[k] * pf->dq[i][k][0];
+            s->sy[i] += E[k] * pf->dq[i][k][1];
+            s->dx[i] += pf->e[k][0] * pf->dq[i][k][0];
+            s->dy[i] += pf->e[k][0] * pf->dq[i][k][1];
+        }
+    }
+}
+
+/* The exact values and differences of A, D and rho^2 along the span. */
+static void span_setup(const span_src *s, span_coef *c)
+{
+    const double *sx = s->sx, *sy = s->sy, *dx = s->dx, *dy = s->dy;
     for (int i = 0; i < 4; i++) {
         int j = (i + 1) & 3;
-        s->A0[i] = (float)(sx[i] * sy[j] - sy[i] * sx[j]);
-        s->A1[i] = (float)(sy[i] * w[j] - w[i] * sy[j]);
-        s->D0[i] = (float)(sx[i] * sx[j] + sy[i] * sy[j]);
-        s->D1[i] = (float)(-(w[i] * sx[j] + w[j] * sx[i]));
-        s->D2[i] = (float)(w[i] * w[j]);
-        s->R0[i] = (float)(sx[i] * sx[i] + sy[i] * sy[i]);
-        s->R1[i] = (float)(-2 * w[i] * sx[i]);
-        s->R2[i] = (float)(w[i] * w[i]);
+        c->A0[i] = (float)(sx[i] * sy[j] - sy[i] * sx[j]);
+        c->A1[i] = (float)((sx[i] * dy[j] + dx[i] * sy[j]) - (sy[i] * dx[j] + dy[i] * sx[j]));
+        c->A2[i] = (float)(dx[i] * dy[j] - dy[i] * dx[j]);
+        c->D0[i] = (float)(sx[i] * sx[j] + sy[i] * sy[j]);
+        c->D1[i] = (float)((sx[i] * dx[j] + dx[i] * sx[j]) + (sy[i] * dy[j] + dy[i] * sy[j]));
+        c->D2[i] = (float)(dx[i] * dx[j] + dy[i] * dy[j]);
+        c->R0[i] = (float)(sx[i] * sx[i] + sy[i] * sy[i]);
+        c->R1[i] = (float)(2 * (sx[i] * dx[i] + sy[i] * dy[i]));
+        c->R2[i] = (float)(dx[i] * dx[i] + dy[i] * dy[i]);
     }
 }
 
@@ -119,7 +165,7 @@ static void span_weights(const span_coef *s, const float (*corner_attr)[QGL_SW_M
     for (int i = 0; i < 4; i++) {
         int j = (i + 1) & 3;
         for (int k = 0; k < SPAN; k++) {
-            float A = s->A0[i] + lane_k[k] * s->A1[i];
+            float A = s->A0[i] + lane_k[k] * (s->A1[i] + lane_k[k] * s->A2[i]);
             float D = s->D0[i] + lane_k[k] * (s->D1[i] + lane_k[k] * s->D2[i]);
             float P = r[i][k] * r[j][k];
             float diff = P - D, sum = P + D;
@@ -190,13 +236,29 @@ static int uncull(const qgl__ctx *c, signed char facing[SPAN])
     return left;
 }
 
-/* A lane whose float weights came out non-finite: qgl_weightsf's limits instead. */
-static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const float clipf[4][4], double X, double Y,
-                         float *attr, double *zndc)
+/* A lane whose float weights came out non-finite: qgl_weightsf's limits instead (for the
+ * in-plane form qgl_weights_inplanef's, at the pixel's in-plane position). */
+static int lane_fallback(qgl__ctx *c, const qgl__quad *q, const plane_form *pf, const float clipf[4][4], double X,
+                         double Y, float *attr, double *zndc)
 {
     float persp[4], screen[4];
-    int r = qgl_weightsf(clipf, (float)qgl__centred(X, c->fb->width), (float)qgl__centred(Y, c->fb->height), persp,
+    int r;
+    if (pf) {
+        qgl_planef pl;
+        double E[3], sum = 0, xy[2] = {0, 0};
+        for (int k = 0; k < 3; k++) {
+            E[k] = (pf->e[k][0] * X + pf->e[k][1] * Y) + pf->e[k][2];
+            sum += E[k];
+            xy[0] += E[k] * pf->corner[pf->tri[k]][0];
+            xy[1] += E[k] * pf->corner[pf->tri[k]][1];
+        }
+        for (int i = 0; i < 4; i++)
+            pl.corner[i][0] = pf->corner[i][0], pl.corner[i][1] = pf->corner[i][1];
+        r = qgl_weights_inplanef(&pl, (float)(xy[0] / sum), (float)(xy[1] / sum), persp);
+    } else {
+        r = qgl_weightsf(clipf, (float)qgl__centred(X, c->fb->width), (float)qgl__centred(Y, c->fb->height), persp,
                          screen);
+    }
     if (r == QGL_NONFINITE)
         return 0;
     const double pd[4] = {persp[0], persp[1], persp[2], persp[3]};
@@ -243,7 +305,7 @@ static int span_store_plain(qgl__ctx *c, int xs, int y, int n, const signed char
     return 1;
 }
 
-void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
+static void draw_spans(qgl__ctx *c, const qgl__quad *q, const plane_form *pf)
 {
     float corner_attr[4][QGL_SW_MAX_ATTR], z[4], w[4], clipf[4][4], attr[QGL_SW_MAX_ATTR];
     int nattr = q->nattr;
@@ -255,6 +317,7 @@ void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
         for (int k = 0; k < 4; k++)
             clipf[i][k] = (float)q->px[i][k];
     }
+    span_src src;
     span_coef s;
     span_out o;
     signed char facing[SPAN];
@@ -276,7 +339,11 @@ void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
             } else if (!span_cover(q, X0, Y, n, facing) || !uncull(c, facing)) {
                 continue;
             }
-            span_setup(q, X0, Y, &s);
+            if (pf)
+                plane_src(pf, X0, Y, &src);
+            else
+                screen_src(q, X0, Y, &src);
+            span_setup(&src, &s);
             span_weights(&s, (const float(*)[QGL_SW_MAX_ATTR])corner_attr, nattr, z, w, &o);
             if (span_store_plain(c, xs, y, n, facing, &o, nattr))
                 continue;
@@ -287,11 +354,54 @@ void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
                 if (isfinite(o.inv[k]) && isfinite(o.zndc[k]) && o.inv[k] != 0) {
                     for (int a = 0; a < nattr; a++)
                         attr[a] = o.attr[a][k];
-                } else if (!lane_fallback(c, q, (const float(*)[4])clipf, X0 + k, Y, attr, &zndc)) {
+                } else if (!lane_fallback(c, q, pf, (const float(*)[4])clipf, X0 + k, Y, attr, &zndc)) {
                     continue;
                 }
                 qgl__fragment(c, xs + k, y, zndc, facing[k], attr);
             }
         }
     }
+}
+
+void qgl__draw_mvc(qgl__ctx *c, const qgl__quad *q)
+{
+    draw_spans(c, q, NULL);
+}
+
+/* The in-plane form of a planar quad in front of the eye: the triangle (0, 1, 2) or (0, 2, 3)
+ * whose screen determinant is larger (either interpolates the plane exactly; the larger is
+ * the better conditioned), its edge functions, and the scaled corner differences. */
+static void plane_form_setup(const qgl__quad *q, const qgl_sw_fb *fb, const double corner[4][2], plane_form *pf)
+{
+    double d012 = fabs(qgl__det3(q->h[0], q->h[1], q->h[2])), d023 = fabs(qgl__det3(q->h[0], q->h[2], q->h[3]));
+    static const int tris[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    const int *t = tris[d023 > d012];
+    double emax = 0, qmax = 0;
+    for (int k = 0; k < 3; k++) {
+        qgl__edge e;
+        pf->tri[k] = t[k];
+        qgl__edge_setup(&e, q->h[t[(k + 1) % 3]], q->h[t[(k + 2) % 3]]);
+        pf->e[k][0] = e.a, pf->e[k][1] = e.b, pf->e[k][2] = e.c;
+        emax = fmax(emax, fabs(e.a) * fb->width + fabs(e.b) * fb->height + fabs(e.c));
+    }
+    for (int i = 0; i < 4; i++) {
+        pf->corner[i][0] = (float)corner[i][0];
+        pf->corner[i][1] = (float)corner[i][1];
+        for (int k = 0; k < 3; k++)
+            qmax = fmax(qmax, fmax(fabs(corner[i][0] - corner[t[k]][0]), fabs(corner[i][1] - corner[t[k]][1])));
+    }
+    int ee = 0, eq = 0;
+    frexp(emax, &ee);
+    frexp(qmax, &eq);
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 2; j++)
+                pf->dq[i][k][j] = ldexp(corner[i][j] - corner[t[k]][j], -ee - eq);
+}
+
+void qgl__draw_mvc_plane(qgl__ctx *c, const qgl__quad *q, const double corner[4][2])
+{
+    plane_form pf;
+    plane_form_setup(q, c->fb, corner, &pf);
+    draw_spans(c, q, &pf);
 }

@@ -205,7 +205,12 @@ int qgl__row_inner(const qgl__quad *q, double Y, int x0, int x1, int *xa, int *x
     return 1;
 }
 
-void qgl__triangle(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nattr)
+/* The triangle scan: per covered pixel the nvary values interpolated perspective-correctly
+ * (in double), then either written as the fragment's attributes (map NULL: the splits and
+ * subdivisions) or handed to map, which turns them into attributes (the in-plane methods
+ * interpolate a position and weigh it). Inline so the splits' loop keeps no indirect call. */
+QGL__HOT_INLINE void triangle_scan(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nvary,
+                                   qgl__vary_fn map, void *user)
 {
     const double *v[3] = {v0, v1, v2};
     double h[3][3];
@@ -221,6 +226,7 @@ void qgl__triangle(qgl__ctx *c, const double *v0, const double *v1, const double
     qgl__edge_setup(&e[1], h[2], h[0]);
     qgl__edge_setup(&e[2], h[0], h[1]);
     float attr[QGL_SW_MAX_ATTR];
+    double vary[QGL_SW_MAX_ATTR];
     for (int y = box[1]; y <= box[3]; y++) {
         double Y = y + 0.5, lo, hi;
         int x0, x1;
@@ -239,11 +245,29 @@ void qgl__triangle(qgl__ctx *c, const double *v0, const double *v1, const double
             double sum = E[0] + E[1] + E[2];
             double zs = E[0] * v0[2] + E[1] * v1[2] + E[2] * v2[2];
             double ws = E[0] * v0[3] + E[1] * v1[3] + E[2] * v2[3];
-            for (int k = 0; k < nattr; k++)
-                attr[k] = (float)((E[0] * v0[4 + k] + E[1] * v1[4 + k] + E[2] * v2[4 + k]) / sum);
+            if (map) {
+                for (int k = 0; k < nvary; k++)
+                    vary[k] = (E[0] * v0[4 + k] + E[1] * v1[4 + k] + E[2] * v2[4 + k]) / sum;
+                if (!map(user, vary, attr))
+                    continue;
+            } else {
+                for (int k = 0; k < nvary; k++)
+                    attr[k] = (float)((E[0] * v0[4 + k] + E[1] * v1[4 + k] + E[2] * v2[4 + k]) / sum);
+            }
             qgl__fragment(c, x, y, zs / ws, f, attr);
         }
     }
+}
+
+void qgl__triangle(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nattr)
+{
+    triangle_scan(c, v0, v1, v2, nattr, NULL, NULL);
+}
+
+void qgl__triangle_map(qgl__ctx *c, const double *v0, const double *v1, const double *v2, int nvary,
+                       qgl__vary_fn map, void *user)
+{
+    triangle_scan(c, v0, v1, v2, nvary, map, user);
 }
 
 void qgl__quad_scan(qgl__ctx *c, const qgl__quad *q, qgl__weight_fn fn, void *user)

@@ -1,4 +1,5 @@
-/* libFuzzer target for the numeric core: weights, classification, membership, inverse bilinear.
+/* libFuzzer target for the numeric core: weights, classification, membership, inverse bilinear,
+ * the view-invariant weights.
  *
  * The first byte chooses how the rest becomes 4 clip corners and a point: raw IEEE doubles
  * (NaN, inf, subnormals, anything), small integers on a grid (equal corners, collinear
@@ -195,6 +196,32 @@ static void check_geometry(const double clip[4][4], double x, double y, int fini
     REQUIRE((ib == QGL_NONFINITE) == !(f2 && isfinite(x) && isfinite(y)));
 }
 
+/* The view-invariant weights, with the clip corners' x, y, z as object corners and (x, y, z0)
+ * as the surface point: finite outputs, the documented codes, a partition of unity inside. */
+static void check_plane(const double clip[4][4], double x, double y, int finite)
+{
+    double pos[4][3], p[3] = {x, y, clip[0][2]}, lam[4];
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            pos[i][k] = clip[i][k];
+    qgl_plane pl;
+    int fr = qgl_plane_frame(pos, &pl);
+    REQUIRE(fr == 0 || fr == QGL_DEGENERATE || fr == QGL_NONFINITE);
+    REQUIRE(all_finite(&pl.corner[0][0], 8) && all_finite(pl.height, 4) && all_finite(pl.origin, 3));
+    int rc = qgl_weights_plane(pos, p, lam);
+    REQUIRE(valid_rc(rc));
+    REQUIRE(all_finite(lam, 4));
+    REQUIRE((rc == QGL_NONFINITE) == !finite);
+    if (rc == QGL_INSIDE) {
+        double sum = 0;
+        for (int i = 0; i < 4; i++) {
+            REQUIRE(lam[i] >= -1e-9);
+            sum += lam[i];
+        }
+        REQUIRE(fabs(sum - 1) <= 1e-9);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -208,5 +235,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     check_weights(clip, x, y, finite);
     check_weightsf(clip, x, y);
     check_geometry(clip, x, y, all_finite(val, 16));
+    int obj_finite = isfinite(x) && isfinite(y);
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            obj_finite = obj_finite && isfinite(clip[i][k]);
+    check_plane(clip, x, y, obj_finite);
     return 0;
 }

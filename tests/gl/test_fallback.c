@@ -8,7 +8,8 @@
  * transform of recombined object points), so a few outline pixels may flip; we allow 1% of
  * the outline. Pixels within 6 px of a bow-tie's crossing point (a singularity of the weights,
  * where neither path converges) are not compared. Both paths must also agree on quads in
- * perspective, non-planar and concave. */
+ * perspective, non-planar and concave, with the screen-space weights (MVC) and with the
+ * view-invariant ones (MVC_PLANE: in the plane, and on the bilinear patch for the saddle). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,6 +71,42 @@ static void compare(th_ctx *t, qgl_context *shader, qgl_context *fallback, const
     free(img[1]);
 }
 
+/* Both contexts with one method: MVC (screen-space weights) or MVC_PLANE (view-invariant:
+ * the in-plane cover for planar quads, the bilinear patch for the saddle). */
+static void run(th_ctx *t, qgl_method method, const char *suffix)
+{
+    qgl_gl_set_method(t->qgl, method);
+    qgl_gl_desc fd = {.method = method, .force_fallback = 1, .get_proc = th_get_proc, .tolerance_px = 0.5f};
+    qgl_context *fb = qgl_gl_create(&fd);
+    if (!fb || qgl_gl_shader_level(fb) != 0 || qgl_gl_shader_level(t->qgl) == 0) {
+        th_check(0, "could not create the two contexts");
+        return;
+    }
+    char name[64];
+    static const float convex[4][3] = {{-0.9f, -0.9f, 0}, {0.8f, -0.7f, 0}, {0.6f, 0.85f, 0}, {-0.7f, 0.3f, 0}};
+    static const float concave[4][3] = {{-0.8f, -0.9f, 0}, {0.9f, 0.0f, 0}, {-0.8f, 0.9f, 0}, {-0.1f, 0.0f, 0}};
+    static const float bowtie[4][3] = {{-0.9f, -0.8f, 0}, {0.9f, 0.85f, 0}, {0.85f, -0.9f, 0}, {-0.8f, 0.9f, 0}};
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    snprintf(name, sizeof name, "fallback_convex%s", suffix);
+    compare(t, t->qgl, fb, convex, name);
+    snprintf(name, sizeof name, "fallback_concave%s", suffix);
+    compare(t, t->qgl, fb, concave, name);
+    snprintf(name, sizeof name, "fallback_bowtie%s", suffix);
+    compare(t, t->qgl, fb, bowtie, name);
+    sc_camera(-40, 20);
+    static const float saddle[4][3] = {{-1, -1, 0.4f}, {1, -0.8f, -0.4f}, {0.9f, 1, 0.4f}, {-1, 0.9f, -0.4f}};
+    static const float trapezoid[4][3] = {{-1.2f, -1, 0}, {1.2f, -1, 0}, {0.4f, 1, 0}, {-0.4f, 1, 0}};
+    snprintf(name, sizeof name, "fallback_saddle%s", suffix);
+    compare(t, t->qgl, fb, saddle, name);
+    snprintf(name, sizeof name, "fallback_persp%s", suffix);
+    compare(t, t->qgl, fb, trapezoid, name);
+    qgl_gl_make_current(t->qgl);
+    qgl_gl_destroy(fb);
+}
+
 int main(void)
 {
     th_ctx t;
@@ -77,27 +114,10 @@ int main(void)
     int rc = th_init(&t, 256, 256, &d);
     if (rc)
         return rc;
-    qgl_gl_desc fd = {.method = QGL_METHOD_MVC, .force_fallback = 1, .get_proc = th_get_proc, .tolerance_px = 0.5f};
-    qgl_context *fb = qgl_gl_create(&fd);
-    if (!fb || qgl_gl_shader_level(fb) != 0 || qgl_gl_shader_level(t.qgl) == 0) {
-        fprintf(stderr, "could not create the two contexts\n");
-        return 1;
-    }
     glClearColor(0, 0, 0, 0);
     glEnable(GL_DEPTH_TEST);
-    static const float convex[4][3] = {{-0.9f, -0.9f, 0}, {0.8f, -0.7f, 0}, {0.6f, 0.85f, 0}, {-0.7f, 0.3f, 0}};
-    static const float concave[4][3] = {{-0.8f, -0.9f, 0}, {0.9f, 0.0f, 0}, {-0.8f, 0.9f, 0}, {-0.1f, 0.0f, 0}};
-    static const float bowtie[4][3] = {{-0.9f, -0.8f, 0}, {0.9f, 0.85f, 0}, {0.85f, -0.9f, 0}, {-0.8f, 0.9f, 0}};
-    compare(&t, t.qgl, fb, convex, "fallback_convex");
-    compare(&t, t.qgl, fb, concave, "fallback_concave");
-    compare(&t, t.qgl, fb, bowtie, "fallback_bowtie");
-    sc_camera(-40, 20);
-    static const float saddle[4][3] = {{-1, -1, 0.4f}, {1, -0.8f, -0.4f}, {0.9f, 1, 0.4f}, {-1, 0.9f, -0.4f}};
-    static const float trapezoid[4][3] = {{-1.2f, -1, 0}, {1.2f, -1, 0}, {0.4f, 1, 0}, {-0.4f, 1, 0}};
-    compare(&t, t.qgl, fb, saddle, "fallback_saddle");
-    compare(&t, t.qgl, fb, trapezoid, "fallback_persp");
-    qgl_gl_make_current(t.qgl);
-    qgl_gl_destroy(fb);
+    run(&t, QGL_METHOD_MVC, "");
+    run(&t, QGL_METHOD_MVC_PLANE, "_plane");
     th_free(&t);
     return th_failures ? 1 : 0;
 }

@@ -4,11 +4,12 @@
  *
  * 48 quad strips alternate a large quad with random corner colours (shader path) and a sliver
  * of 0.5 x 4 pixels (split, or free to join): AUTO must draw each strip in one draw with every quad on the shader path, and its
- * picture must equal method MVC's exactly (the same program over the same quads). A second
+ * picture must equal method MVC_PLANE's exactly (the same program, AUTO's view-invariant
+ * weights, over the same quads). A second
  * frame draws a strip of 100 slivers (0.25 x 8 pixels) followed by one large quad: the slivers are a run long
  * enough to be worth the driver's own draw, so AUTO splits them (2 draws), and its picture
- * equals the driver's quads there within 0 (the split is what the driver does) and method MVC
- * on the large quad. */
+ * equals the driver's quads there within 0 (the split is what the driver does) and method
+ * MVC_PLANE on the large quad. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,24 +87,24 @@ int main(void)
     glClearColor(0, 0, 0, 0);
     qgl_gl_stats_t sa, sm, ss;
     unsigned char *a = frame(&t, QGL_METHOD_AUTO, alternating, &sa);
-    unsigned char *m = frame(&t, QGL_METHOD_MVC, alternating, &sm);
+    unsigned char *m = frame(&t, QGL_METHOD_MVC_PLANE, alternating, &sm);
     int d = differ(&t, a, m, 0, t.w);
-    printf("alternating: auto %llu quads in %llu draws (mvc %llu, split %llu); differs from MVC in %d px\n",
+    printf("alternating: auto %llu quads in %llu draws (mvc %llu, split %llu); differs from MVC_PLANE in %d px\n",
            (unsigned long long)sa.quads, (unsigned long long)sa.draws, (unsigned long long)sa.mvc,
            (unsigned long long)sa.split, d);
     th_write(&t, a, "runs_alternating");
     th_check(sa.quads == 48 * 11 && sa.mvc == sa.quads && sa.draws == 48, "alternating: slivers not joined");
-    th_check(d == 0, "alternating: AUTO differs from MVC");
+    th_check(d == 0, "alternating: AUTO differs from MVC_PLANE");
     free(a);
     free(m);
 
     a = frame(&t, QGL_METHOD_AUTO, long_run, &sa);
-    m = frame(&t, QGL_METHOD_MVC, long_run, &sm);
+    m = frame(&t, QGL_METHOD_MVC_PLANE, long_run, &sm);
     unsigned char *s = frame(&t, QGL_METHOD_SPLIT, long_run, &ss);
     /* the slivers cover pixels 12.8 to 37.8, the large quad 37.8 to 153 */
     int ds = differ(&t, a, s, 0, 37), dm = differ(&t, a, m, 39, t.w);
     printf("long run: auto %llu quads in %llu draws (mvc %llu, split %llu); slivers differ from the split in %d px, "
-           "the large quad from MVC in %d px\n",
+           "the large quad from MVC_PLANE in %d px\n",
            (unsigned long long)sa.quads, (unsigned long long)sa.draws, (unsigned long long)sa.mvc,
            (unsigned long long)sa.split, ds, dm);
     th_write(&t, a, "runs_long");

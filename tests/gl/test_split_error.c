@@ -1,10 +1,11 @@
-/* test_split_error: AUTO splits a planar quad whose split differs invisibly from MVC.
+/* test_split_error: AUTO splits a planar quad whose split differs invisibly from its smooth
+ * path (the view-invariant weights, forced by MVC_PLANE).
  *
  * A 16 x 16 grid of square quads on a plane seen in perspective carries attributes with a
  * small bilinear term (not affine, so the split is not exact). Where the planner's bound
  * says the split differs from the mean value interpolation by under half an 8-bit level
  * (colours) or 1/32 texel (texture coordinates), AUTO must split most quads (the counters)
- * and still draw the picture of the forced shader path: within 1/255 for colours, within
+ * and still draw the picture of the forced shader path (MVC_PLANE): within 1/255 for colours, within
  * 2/255 for a LINEAR texture with 64-level steps between neighbouring texels (1/32 texel of
  * error moves such a sample by 2 levels), except at most 0.2 % of the pixels. Where the
  * difference is visible (vertex colours in a checker; texture coordinates with a bilinear
@@ -108,19 +109,19 @@ static int count_diff(const unsigned char *a, const unsigned char *b, int tol, i
     return bad;
 }
 
-/* AUTO against MVC on the grid: returns the quads AUTO split, checks the pixels. */
+/* AUTO against MVC_PLANE on the grid: returns the quads AUTO split, checks the pixels. */
 static int compare(th_ctx *t, const char *name, int textured, int tol, int allowed_bad, int retained)
 {
     qgl_quad_batch b = batch(textured);
     qgl_retained *r = retained ? qgl_gl_retain(&b, NULL) : NULL;
     qgl_gl_stats_t sa, sm;
     unsigned char *a = draw(t, QGL_METHOD_AUTO, &b, r, &sa);
-    unsigned char *m = draw(t, QGL_METHOD_MVC, &b, r, &sm);
+    unsigned char *m = draw(t, QGL_METHOD_MVC_PLANE, &b, r, &sm);
     int worst, bad = count_diff(a, m, tol, &worst);
     printf("%-28s auto split %3llu mvc %3llu | pixels over %d/255: %d (allowed %d), largest %d/255\n", name,
            (unsigned long long)sa.split, (unsigned long long)sa.mvc, tol, bad, allowed_bad, worst);
-    th_check(sm.mvc == N * N, "%s: MVC forced must take the shader path for every quad", name);
-    th_check(bad <= allowed_bad, "%s: %d pixels differ from MVC by more than %d/255", name, bad, tol);
+    th_check(sm.mvc == N * N, "%s: MVC_PLANE forced must take the shader path for every quad", name);
+    th_check(bad <= allowed_bad, "%s: %d pixels differ from MVC_PLANE by more than %d/255", name, bad, tol);
     if (bad > allowed_bad) {
         th_write(t, a, "split_error_auto");
         th_write(t, m, "split_error_mvc");
@@ -132,14 +133,14 @@ static int compare(th_ctx *t, const char *name, int textured, int tol, int allow
 }
 
 /* The comparison can fail: with the budget 1000 times larger the checker grid splits and its
- * picture differs from MVC's by many levels. */
+ * picture differs from MVC_PLANE's by many levels. */
 static void teeth(th_ctx *t)
 {
     qgl_quad_batch b = batch(0);
     qgl_gl_stats_t sa, sm;
     qgl_gl_set_split_error(t->qgl, 1000);
     unsigned char *a = draw(t, QGL_METHOD_AUTO, &b, NULL, &sa);
-    unsigned char *m = draw(t, QGL_METHOD_MVC, &b, NULL, &sm);
+    unsigned char *m = draw(t, QGL_METHOD_MVC_PLANE, &b, NULL, &sm);
     int worst, bad = count_diff(a, m, 1, &worst);
     th_check(sa.split == N * N && bad > W * H / 20 && worst > 16,
              "budget x1000: split %llu, %d pixels over 1/255, largest %d: the comparison has no teeth",
