@@ -199,7 +199,8 @@ QGL_API int qgl_mvcgrid_fits(const double v[4][2]);
 /* Screen points of g's vertices in the quad v (bilinear in uv). */
 QGL_API void qgl_mvcgrid_points(const qgl_mvcgrid *g, const double v[4][2], double (*out)[2]);
 /* The screen points (v) and perspective weights (persp) of g's vertices for clip-space
- * corners (x, y, w used); 0 when some w <= 0 or the screen quad is not in the class. */
+ * corners (x, y, w used); 0 when some w <= 0 or the screen quad is not strictly convex (the
+ * bound needs the class as well: the caller's test). */
 QGL_API int qgl_mvcgrid_weights(const qgl_mvcgrid *g, const double clip[4][4], double (*v)[2], double (*persp)[4]);
 
 /* ---- inverse bilinear (Quilez), for comparison ---------------------------------------------- */

@@ -49,12 +49,17 @@ typedef enum qgl_sw_method {
                             bilinear attributes (Heckbert; exact for planar parallelograms) */
     QGL_SW_EXACT,        /* reference: each pixel's ray against the bilinear patch of the
                             corners, double precision, nearest visible hit */
+    QGL_SW_MVCGRID,      /* the mean value grid (qgl_mvcgrid) of n x n cells, exact weights at
+                            its vertices, triangles between (n not tabulated: the next finer
+                            grid); quads not strictly convex or behind the eye per pixel as
+                            mvc */
     QGL_SW_METHOD_COUNT
 } qgl_sw_method;
 
 typedef struct qgl_sw_method_desc {
     qgl_sw_method method;
-    int n;                         /* bilinear: subdivisions per side, default 8 */
+    int n;                         /* bilinear: subdivisions per side, default 8; mvcgrid:
+                                      cells per side, default 4 */
     qgl_adaptive_params adaptive;  /* adaptive: thresholds, zero fields = Oliveira's */
 } qgl_sw_method_desc;
 
