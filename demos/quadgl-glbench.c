@@ -246,9 +246,9 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
     qgl_gl_stats(q, &st);
     double per = (double)(frames + 1), ratio = t.wall[1] / t.wall[0];
     printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.1f) %-6s cpu ratio %5.2f | per frame: "
-           "mvc %.0f split %.0f subdiv %.0f draws %.0f\n",
+           "mvc %.0f split %.0f grid %.0f fallback %.0f draws %.0f\n",
            name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
-           st.mvc / per, st.split / per, st.subdiv / per, st.draws / per);
+           st.mvc / per, st.split / per, st.subdiv / per, st.fallback / per, st.draws / per);
 }
 
 static void setup_ortho(int unused) { (void)unused, ortho(); }
@@ -282,6 +282,11 @@ int main(int argc, char **argv)
     make_texture();
     printf("%s, %dx%d, median of %d frames, shader level %d\n", (const char *)glGetString(GL_RENDERER), W, H,
            frames, qgl_gl_shader_level(q));
+    qgl_gl_costs_t costs;
+    qgl_gl_costs(q, &costs);
+    printf("calibration: %s in %.1f ms (+ %.0f ms of first draws): shader path %.0f ns/quad + %.2f ns/px, split %.2f ns/px, grid %.0f ns/triangle\n",
+           costs.valid ? "valid" : "INVALID (the planner keeps the shader path)", costs.ms, costs.warm_ms, costs.mvc_quad_ns,
+           costs.mvc_px_ns, costs.split_px_ns, costs.grid_tri_ns);
     report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.5);
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);

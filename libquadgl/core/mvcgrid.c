@@ -183,6 +183,19 @@ QGL_API int qgl_mvcgrid_fits(const double v[4][2])
     return lo >= QGL__GRID_EDGE * QGL__GRID_EDGE * hi;
 }
 
+static int strictly_convex(const double v[4][2])
+{
+    double turn[4];
+    for (int i = 0; i < 4; i++) {
+        const double *p = v[(i + 3) & 3], *q = v[i], *r = v[(i + 1) & 3];
+        turn[i] = (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
+    }
+    int pos = 0, neg = 0;
+    for (int i = 0; i < 4; i++)
+        pos += turn[i] > 0, neg += turn[i] < 0;
+    return pos == 4 || neg == 4;
+}
+
 QGL_API void qgl_mvcgrid_points(const qgl_mvcgrid *g, const double v[4][2], double (*out)[2])
 {
     for (int j = 0; j < g->nverts; j++) {
@@ -234,7 +247,7 @@ QGL_API int qgl_mvcgrid_weights(const qgl_mvcgrid *g, const double clip[4][4], d
         c[i][0] = clip[i][0] / clip[i][3];
         c[i][1] = clip[i][1] / clip[i][3];
     }
-    if (!qgl_mvcgrid_fits(c))
+    if (!strictly_convex(c))
         return 0;
     qgl_mvcgrid_points(g, c, v);
     for (int i = 0; i < 4; i++) /* relative to corner 0: small quads far out keep their digits */
