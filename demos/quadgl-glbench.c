@@ -233,6 +233,37 @@ static void make_texture(void)
 
 static const char *only; /* run only cases whose name contains this */
 
+/* One frame of f in method m, read back (W * H * 4 bytes, caller frees). */
+static unsigned char *frame_of(qgl_context *q, qgl_method m, frame_fn f)
+{
+    unsigned char *img = malloc((size_t)W * H * 4);
+    qgl_gl_set_method(q, m);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    f(0);
+    qgl_gl_flush(q);
+    glFinish();
+    if (img)
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, img);
+    return img;
+}
+
+/* The method's picture against the per-fragment mvc picture: the largest difference in 8-bit
+ * levels and the pixels more than one level apart (the budget is half a level before
+ * rounding, so one level is what rounding alone can add). */
+static void against_mvc(qgl_context *q, qgl_method m, frame_fn f, int *worst, long *over)
+{
+    unsigned char *a = frame_of(q, m, f), *b = frame_of(q, QGL_METHOD_MVC, f);
+    *worst = 0, *over = 0;
+    for (size_t i = 0; a && b && i < (size_t)W * H * 4; i++) {
+        int d = abs(a[i] - b[i]);
+        *worst = d > *worst ? d : *worst;
+        *over += d > 1;
+    }
+    free(a);
+    free(b);
+    qgl_gl_set_method(q, m);
+}
+
 static void report(const char *name, qgl_context *q, qgl_method method, frame_fn setup, frame_fn f, int frames,
                    double target)
 {
@@ -247,10 +278,17 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
     qgl_gl_stats_t st;
     qgl_gl_stats(q, &st);
     double per = (double)(frames + 1), ratio = t.wall[1] / t.wall[0];
+    int worst = 0;
+    long over = 0;
+    if (method == QGL_METHOD_AUTO)
+        against_mvc(q, method, f, &worst, &over);
     printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.1f) %-6s cpu ratio %5.2f | per frame: "
-           "mvc %.0f split %.0f subdiv %.0f draws %.0f\n",
+           "mvc %.0f split %.0f grid %.0f fallback %.0f draws %.0f",
            name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
-           st.mvc / per, st.split / per, st.subdiv / per, st.draws / per);
+           st.mvc / per, st.split / per, st.subdiv / per, st.fallback / per, st.draws / per);
+    if (method == QGL_METHOD_AUTO)
+        printf(" | vs mvc picture: max %d levels, %ld values over 1", worst, over);
+    printf("\n");
 }
 
 static void setup_ortho(int unused) { (void)unused, ortho(); }
@@ -284,8 +322,14 @@ int main(int argc, char **argv)
     make_texture();
     printf("%s, %dx%d, median of %d frames, shader level %d\n", (const char *)glGetString(GL_RENDERER), W, H,
            frames, qgl_gl_shader_level(q));
-    report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.5);
-    report("full-screen non-affine quad (mvcplane)", q, QGL_METHOD_MVC_PLANE, setup_ortho, fullscreen, frames, 2.5);
+    qgl_gl_costs_t costs;
+    qgl_gl_costs(q, &costs);
+    printf("calibration: %s in %.1f ms (+ %.0f ms of first draws): shader path %.0f ns/quad + %.2f ns/px, split %.2f ns/px, grid %.0f ns/triangle\n",
+           costs.valid ? "valid" : "INVALID (the planner keeps the shader path)", costs.ms, costs.warm_ms, costs.mvc_quad_ns,
+           costs.mvc_px_ns, costs.split_px_ns, costs.grid_tri_ns);
+    report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.0);
+    report("full-screen non-affine quad (mvcplane)", q, QGL_METHOD_MVC_PLANE, setup_ortho, fullscreen, frames, 2.0);
+    report("full-screen non-affine quad (auto)", q, QGL_METHOD_AUTO, setup_ortho, fullscreen, frames, 1.1);
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("mesh, one draw per strip (auto)", q1, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);

@@ -30,11 +30,12 @@
 
 static const char *full_methods = "split02,split13,mvc,mvc64,bilinear:2,bilinear:4,bilinear:8,bilinear:16,"
                                   "bilinear:32,adaptive:area=800,adaptive,adaptive:q=1e-4,t=1e-5,area=50,"
-                                  "invbilinear,projective,exact,mvcplane,mvcpatch,invbilinearplane";
+                                  "invbilinear,projective,exact,mvcplane,mvcpatch,invbilinearplane,mvcgrid:2,mvcgrid:4,"
+                                  "mvcgrid:8,mvcgrid:16";
 static const char *quick_methods = "split02,split13,mvc,mvc64,bilinear:2,bilinear:8,adaptive,invbilinear,"
-                                   "projective,exact,mvcplane,mvcpatch";
+                                   "projective,exact,mvcplane,mvcpatch,mvcgrid:4";
 static const char *sheet_columns[] = {"split02", "split13", "mvc", "bilinear:8", "adaptive",
-                                      "invbilinear", "projective", "exact"};
+                                      "invbilinear", "projective", "mvcgrid:4", "exact"};
 
 typedef struct options {
     int quick, size, repeats, speed_size, thumb;
@@ -432,6 +433,41 @@ static const bench_scene *drift_scene(const bench_scene *scenes, int n)
     return &scenes[0];
 }
 
+/* ---- the mean value grid against per-pixel mvc ---- */
+
+/* Each mvcgrid:N result against mvc rendered again here (the same weights per pixel): the
+ * grid's own error, beside its error against exact and both times from the main table. */
+static void grid_report(const bench_result *r, int n, const bench_scene *scenes, int nscenes)
+{
+    printf("\n## mvcgrid (exact weights at the grid's vertices, linear between) against per-pixel mvc\n\n");
+    printf("| scene | method | ms | mvc ms | max vs mvc | RMS vs mvc | RMS vs exact | mvc RMS vs exact |\n"
+           "|---|---|---:|---:|---:|---:|---:|---:|\n");
+    for (int s = 0; s < nscenes; s++) {
+        const bench_scene *bs = &scenes[s];
+        const bench_result *mvc = NULL;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(r[i].scene, bs->scene->name) && !strcmp(r[i].method, "mvc"))
+                mvc = &r[i];
+        bench_image ref, img;
+        if (!mvc || bench_image_alloc(&ref, bs->width, bs->height, bs->scene->nattr))
+            continue;
+        bench_render(bs, &mvc->m, 0, &ref, NULL);
+        for (int i = 0; i < n; i++) {
+            const bench_result *x = &r[i];
+            if (strcmp(x->scene, bs->scene->name) || strncmp(x->method, "mvcgrid", 7) ||
+                bench_image_alloc(&img, bs->width, bs->height, bs->scene->nattr))
+                continue;
+            double rms, max;
+            bench_render(bs, &x->m, 0, &img, NULL);
+            bench_error(&img, &ref, bs->scene->unit_scale, &rms, &max);
+            printf("| %s | %s | %.3f | %.3f | %.4g | %.4g | %.4g | %.4g |\n", bs->scene->name, x->method, x->ms,
+                   mvc->ms, max, rms, x->rms, mvc->rms);
+            bench_image_free(&img);
+        }
+        bench_image_free(&ref);
+    }
+}
+
 int main(int argc, char **argv)
 {
     options o = {.repeats = 0};
@@ -481,6 +517,7 @@ int main(int argc, char **argv)
     throughput(o.speed_size, o.repeats < 3 ? 3 : o.repeats);
     pareto(res, nr, scenes, ns);
     drift_summary(res, nr, scenes, ns);
+    grid_report(res, nr, scenes, ns);
     if (o.csv && bench_csv(o.csv, res, nr))
         status = 1;
     if (o.plot && bench_plot(o.plot, res, nr, scenes, ns))

@@ -16,14 +16,17 @@ extern "C" {
 
 /* How quads are drawn. AUTO plans per quad: the driver's split where it is exact (planar,
  * attributes affine in object space) or invisible (tiny on screen, or a planar quad whose split
- * differs from the smooth result by less than the output shows: split_error), the smooth path
- * otherwise. The smooth path of AUTO, MVC_PLANE and SUBDIV weighs view-invariantly: mean value
- * weights of the fragment's position in the quad's own plane (a non-planar quad: of its hit on
- * the bilinear patch, projected onto the best-fit plane), so a surface point keeps its value
- * as the camera moves. MVC forces the smooth path with H&T's screen-space weights (the paper's
- * method: they change with the viewpoint, even on a planar quad), MVC_PLANE the smooth path
- * with the view-invariant ones, SPLIT the driver's own quads, SUBDIV the CPU subdivision
- * fallback. */
+ * differs from the smooth result by less than the output shows: split_error), else the mean
+ * value grid where its error is within the same budgets and it costs less than the smooth
+ * (shader) path, the shader path otherwise. The smooth path of AUTO, MVC_PLANE and SUBDIV
+ * weighs view-invariantly: mean value weights of the fragment's position in the quad's own
+ * plane (a non-planar quad: of its hit on the bilinear patch, projected onto the best-fit
+ * plane), so a surface point keeps its value as the camera moves. MVC forces the smooth path
+ * with H&T's screen-space weights (the paper's method: they change with the viewpoint, even on
+ * a planar quad), MVC_PLANE the smooth path with the view-invariant ones, SPLIT the driver's
+ * own quads, SUBDIV the mean value grid wherever it can serve (an unlit state the shader path
+ * models, a convex quad of the grid's class in front of the eye; its finest grid when none is
+ * within budget) and the CPU subdivision fallback elsewhere. */
 typedef enum qgl_method {
     QGL_METHOD_AUTO = 0,
     QGL_METHOD_MVC = 1,
@@ -60,11 +63,30 @@ typedef struct qgl_gl_stats_t {
     uint64_t quads;       /* quads received */
     uint64_t mvc;         /* drawn by the shader path */
     uint64_t split;       /* drawn by the driver's split (exact, invisible or method SPLIT) */
-    uint64_t subdiv;      /* drawn by the CPU subdivision fallback */
+    uint64_t subdiv;      /* drawn as the mean value grid: exact weights at a subdivision's
+                             vertices, the driver's fast path between them (AUTO where within
+                             the budgets and cheaper than the shader path by qgl_gl_costs,
+                             SUBDIV wherever the grid can serve) */
+    uint64_t fallback;    /* drawn by the CPU subdivision fallback */
     uint64_t passthrough; /* handed to the driver as is (polygon mode, select/feedback) */
     uint64_t draws;       /* driver draw calls issued by the layer */
-    uint64_t subdiv_triangles; /* triangles the fallback produced */
+    uint64_t subdiv_triangles; /* triangles the grid and the fallback produced */
 } qgl_gl_stats_t;
+
+/* The driver's costs the planner weighs (measured when the context is created, off screen,
+ * once per renderer in the process, the timed draws within 20 ms; or given by QUADGL_COSTS=mq,mf,sf,gt in
+ * nanoseconds). valid 0: none, or an odd or failed measurement: AUTO never draws the mean
+ * value grid then and keeps the shader path. */
+typedef struct qgl_gl_costs_t {
+    int valid;
+    double ms;            /* how long the measurement took (0 when given) */
+    double warm_ms;       /* and the untimed first draws before it (the driver's lazy shader
+                             compilation), not part of the 20 ms */
+    double mvc_quad_ns;   /* shader path, per quad */
+    double mvc_px_ns;     /* shader path, per pixel */
+    double split_px_ns;   /* the driver's split (and the grid), per pixel */
+    double grid_tri_ns;   /* the grid, per triangle (its vertices' weights and upload included) */
+} qgl_gl_costs_t;
 
 /* Create inside the current GL context (GL 1.3 or later, compatibility profile); NULL when
  * the entry points cannot be resolved. */
@@ -82,6 +104,7 @@ QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale);
 QGL_API int qgl_gl_shader_level(const qgl_context *ctx);
 QGL_API void qgl_gl_stats(const qgl_context *ctx, qgl_gl_stats_t *out);
 QGL_API void qgl_gl_reset_stats(qgl_context *ctx);
+QGL_API void qgl_gl_costs(const qgl_context *ctx, qgl_gl_costs_t *out);
 /* Draw the quads gathered under assume_exclusive (nothing to do otherwise). Every qgl* call
 that reaches the driver flushes by itself; the owner flushes before its own GL calls. */
 QGL_API void qgl_gl_flush(qgl_context *ctx);

@@ -13,6 +13,7 @@
 #define QUADGL_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #if defined(QGL_BUILDING) && defined(__GNUC__)
 #define QGL_API __attribute__((visibility("default")))
@@ -214,6 +215,39 @@ QGL_API int qgl_weights_planef(const float pos[4][3], const float p[3], float la
  * along pl->diagonal: drawn in object space, it covers the screen quad exactly whatever the
  * camera, corners behind the eye included (the clipper cuts its triangles). Returns the kind. */
 QGL_API int qgl_plane_cover(const qgl_plane *pl, qgl_cover *out);
+
+/* The mean value grid: a subdivision of a convex screen quad whose vertices carry the exact
+ * mean value weights, so that a rasterizer's linear interpolation between them approximates
+ * the per-pixel result; corners 0..3 first (uv (0,0), (1,0), (1,1), (0,1)), then the interior
+ * points. No vertex lies on the boundary: each edge is one triangle edge between two corners,
+ * so neighbours drawn by any path meet it without T-junctions. Triangles keep the quad's
+ * winding. bound is a measured bound (with margin) on the Euclidean norm of the difference
+ * between the interpolated and the exact screen weights, valid for quads qgl_mvcgrid_fits
+ * accepts (libquadgl/core/mvcgrid.c tells how it was measured; the core test re-derives it). */
+typedef struct qgl_mvcgrid {
+    int k;                 /* k x k cells in (u, v) */
+    int nverts, ntris;
+    float (*uv)[2];        /* bilinear parameters per vertex */
+    uint16_t (*tri)[3];    /* vertex numbers */
+    double bound;
+} qgl_mvcgrid;
+
+/* The tabulated grids, finest last: qgl_mvcgrid_at(0 .. count - 1), or by k (NULL if absent). */
+QGL_API int qgl_mvcgrid_count(void);
+QGL_API const qgl_mvcgrid *qgl_mvcgrid_at(int i);
+QGL_API const qgl_mvcgrid *qgl_mvcgrid_get(int k);
+/* Index of the coarsest grid whose bound is <= limit; -1 when none is. */
+QGL_API int qgl_mvcgrid_choose(double limit);
+/* The class the bounds hold for: strictly convex, every angle within 45 degrees of a right
+ * angle, the shortest edge at least a third of the longest (screen points in an isotropic
+ * space, such as pixels). */
+QGL_API int qgl_mvcgrid_fits(const double v[4][2]);
+/* Screen points of g's vertices in the quad v (bilinear in uv). */
+QGL_API void qgl_mvcgrid_points(const qgl_mvcgrid *g, const double v[4][2], double (*out)[2]);
+/* The screen points (v) and perspective weights (persp) of g's vertices for clip-space
+ * corners (x, y, w used); 0 when some w <= 0 or the screen quad is not strictly convex (the
+ * bound needs the class as well: the caller's test). */
+QGL_API int qgl_mvcgrid_weights(const qgl_mvcgrid *g, const double clip[4][4], double (*v)[2], double (*persp)[4]);
 
 /* ---- inverse bilinear (Quilez), for comparison ---------------------------------------------- */
 

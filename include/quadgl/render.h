@@ -59,12 +59,17 @@ typedef enum qgl_sw_method {
                             best-fit plane (double), the patch's depth */
     QGL_SW_INVBILINEARPLANE, /* the inverse bilinear map of the in-plane quad (Quilez's stable
                             quadratic): for a planar convex quad, the exact reference */
+    QGL_SW_MVCGRID,      /* the mean value grid (qgl_mvcgrid) of n x n cells, exact weights at
+                            its vertices, triangles between (n not tabulated: the next finer
+                            grid); quads not strictly convex or behind the eye per pixel as
+                            mvc */
     QGL_SW_METHOD_COUNT
 } qgl_sw_method;
 
 typedef struct qgl_sw_method_desc {
     qgl_sw_method method;
-    int n;                         /* bilinear: subdivisions per side, default 8 */
+    int n;                         /* bilinear: subdivisions per side, default 8; mvcgrid:
+                                      cells per side, default 4 */
     qgl_adaptive_params adaptive;  /* adaptive: thresholds, zero fields = Oliveira's */
 } qgl_sw_method_desc;
 

@@ -5,8 +5,9 @@
  * objects, the quads' provoking vertex rule), creates its own vertex array object and
  * buffers, and compiles a first program to prove the shader path works (the geometry shader
  * path on GL 3.2, else the GLSL 1.20 one of glsl120.c); when neither compiles the context
- * keeps working on the CPU fallback alone. Options come from the desc, then from the
- * environment (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
+ * keeps working on the CPU fallback alone. Then the driver's costs are measured for the
+ * planner (calibrate.c). Options come from the desc, then from the environment
+ * (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -147,6 +148,7 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     if (ctx->has_vao)
         create_objects(ctx);
     choose_shader_path(ctx, glsl120_ok);
+    qgl__calibrate(ctx);
     return ctx;
 }
 
@@ -159,6 +161,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
         qgl__tls_current = NULL;
     qgl__programs_free(ctx);
     qgl__glsl120_free(ctx);
+    qgl__grid_free(ctx);
     free(ctx->arrays);
     if (ctx->has_vao) {
         ctx->gl.DeleteVertexArrays(1, &ctx->vao);

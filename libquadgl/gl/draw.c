@@ -446,20 +446,33 @@ static int gain_within(const double *clip[4], const GLint vp[4], const double n[
     return 1;
 }
 
-/* Largest |n . f| over the components of an attribute (size floats per vertex at a), values
+/* Largest |n . (f - a)| over the values a that f takes on the quad (between its corners'
+ * smallest and largest value f[c]); for a planar quad (sum n = 0) this is |n . f|. */
+static double range_residual(const double n[4], const double f[4])
+{
+    double r = 0, sn = 0, lo = INFINITY, hi = -INFINITY;
+    for (int c = 0; c < 4; c++) {
+        r += n[c] * f[c];
+        sn += n[c];
+        lo = f[c] < lo ? f[c] : lo;
+        hi = f[c] > hi ? f[c] : hi;
+    }
+    return fmax(fabs(r - sn * lo), fabs(r - sn * hi));
+}
+
+/* Largest residual over the components of an attribute (size floats per vertex at a), values
  * clamped to [0, 1] where the pipeline clamps them (colours). */
 static double residual(const double n[4], const float *a, int size, const size_t idx[4], int clamp)
 {
     double worst = 0;
     for (int k = 0; k < size; k++) {
-        double r = 0;
+        double f[4];
         for (int c = 0; c < 4; c++) {
-            double f = a[(size_t)size * idx[c] + (size_t)k];
+            f[c] = a[(size_t)size * idx[c] + (size_t)k];
             if (clamp)
-                f = f < 0 ? 0 : f > 1 ? 1 : f;
-            r += n[c] * f;
+                f[c] = f[c] < 0 ? 0 : f[c] > 1 ? 1 : f[c];
         }
-        r = fabs(r);
+        double r = range_residual(n, f);
         worst = r > worst ? r : worst;
     }
     return worst;
@@ -475,35 +488,33 @@ static double texel_residual(const qgl__state *st, const qgl__verts *v, const si
         return INFINITY;
     if (!(v->mask & (QGL__A_TEX0 << u)))
         return 0; /* the current coordinates: constant */
-    double t[4][4], r[3] = {0, 0, 0};
+    double t[4][4];
     for (int c = 0; c < 4; c++) {
         transform(st->texmat[u], v->tex[u] + 4 * idx[c], t[c]);
         if (!(t[c][3] > 0) || fabs(t[c][3] - t[0][3]) > 1e-6 * t[0][3])
             return INFINITY;
-        for (int k = 0; k < 3; k++)
-            r[k] += n[c] * t[c][k];
     }
     int dims = uk->target == QGL__T_1D ? 1 : uk->target == QGL__T_3D ? 3 : 2;
     double worst = 0;
     for (int k = 0; k < dims; k++) {
-        double e = fabs(r[k]) / t[0][3] * st->texsize[u][k];
+        double f[4] = {t[0][k], t[1][k], t[2][k], t[3][k]};
+        double e = range_residual(n, f) / t[0][3] * st->texsize[u][k];
         worst = e > worst ? e : worst;
     }
     return worst;
 }
 
-/* Whether the split of a planar quad (every w > 0) shows the same pixels as the mean value
- * interpolation, within the budgets above scaled by the context's split_error: colours
+/* The largest gain within the budgets above scaled by the context's split_error, for colours
  * (primary, secondary under colour sum, and the fog factor from the fog coordinate, whose
- * errors add in the output colour) and each unit's texture coordinates. The budgets over the
- * residuals give the largest gain allowed, which the samples then check. Only for states
- * whose per-vertex work is affine in the attributes and that the shader path models; COMBINE
- * arithmetic (scales, dot products) may magnify a difference, so it is not judged. */
-static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
-                           const double *clip[4])
+ * errors add in the output colour) and each unit's texture coordinates: the budgets over
+ * the residuals along n. Only for states whose per-vertex work is affine in the attributes
+ * and that the shader path models; COMBINE arithmetic (scales, dot products) may magnify a
+ * difference, so it is not judged (0). */
+double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                       const double n[4])
 {
-    double scale = ctx->split_error > 0 ? ctx->split_error : 1.0, n[4];
-    if (ctx->split_error < 0 || !st->modelled || st->nonaffine || st->pv_material || !dependency(clip, n))
+    double scale = ctx->split_error > 0 ? ctx->split_error : 1.0;
+    if (ctx->split_error < 0 || !st->modelled || st->nonaffine || st->pv_material)
         return 0;
     int smooth = st->shade_model != GL_FLAT;
     double colour = 0;
@@ -526,11 +537,20 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
             limit = l < limit ? l : limit;
         }
     }
-    /* AUTO's smooth path weighs in the quad's plane */
-    double p[4][3];
+    return limit;
+}
+
+/* Whether the split of a planar quad (every w > 0) shows the same pixels as the mean value
+ * interpolation AUTO's smooth path draws (weighed in the quad's plane): the gain its samples
+ * find within qgl__gain_limit along the corners' clip dependency. */
+static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                           const double *clip[4])
+{
+    double n[4], p[4][3];
     qgl_plane pl;
-    if (!object_corners(v, idx, p) || qgl_plane_frame(p, &pl) != 0)
+    if (!dependency(clip, n) || !object_corners(v, idx, p) || qgl_plane_frame(p, &pl) != 0)
         return 0;
+    double limit = qgl__gain_limit(ctx, st, v, idx, n);
     return limit > 0 && gain_within(clip, st->viewport, n, limit, &pl);
 }
 
@@ -561,18 +581,23 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         return QGL__P_SPLIT; /* entirely behind the eye: the clipper removes it */
     if (ctx->method == QGL_METHOD_SPLIT)
         return QGL__P_SPLIT;
-    if (ctx->method == QGL_METHOD_SUBDIV)
-        return QGL__P_SUBDIV;
+    int planar = 0;
+    if (ctx->method == QGL_METHOD_SUBDIV) {
+        double p[4][3];
+        planar = object_corners(v, idx, p) && qgl_is_planar(p, 1e-6);
+        return !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q) ? QGL__P_GRID : QGL__P_SUBDIV;
+    }
     if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
         bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
         return QGL__P_SPLIT | QGL__P_EITHER;
-    int planar = 0;
     int auto_ = ctx->method == QGL_METHOD_AUTO;
     int exact = quad_exact(ctx, st, v, idx, clip, auto_ && !external, facts, q, &planar);
     if (auto_ && exact)
         return QGL__P_SPLIT | QGL__P_EITHER;
     if (!st->modelled || (!planar && st->polygon_offset))
         return QGL__P_SUBDIV;
+    if (auto_ && !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q))
+        return QGL__P_GRID;
     /* With a corner behind the eye the cover is the clipped split; its rasterized depth is the
      * one consistent with that clipping, so eq. 4 depth is used for visible quads only. */
     if (external)
@@ -821,17 +846,18 @@ static void count(qgl_context *ctx, unsigned char path, size_t nq)
     switch (path & 15) {
     case QGL__P_SPLIT: ctx->stats.split += nq; break;
     case QGL__P_MVC: ctx->stats.mvc += nq; break;
-    case QGL__P_SUBDIV: ctx->stats.subdiv += nq; break;
+    case QGL__P_GRID: ctx->stats.subdiv += nq; break;
+    case QGL__P_SUBDIV: ctx->stats.fallback += nq; break;
     default: ctx->stats.passthrough += nq;
     }
 }
 
 /* A run planned for the shader path that its program could not serve went to the fallback:
  * the counters say where it really went (tests rely on them to prove the shader path ran). */
-static void recount_as_subdiv(qgl_context *ctx, size_t nq)
+static void recount_as_fallback(qgl_context *ctx, size_t nq)
 {
     ctx->stats.mvc -= nq;
-    ctx->stats.subdiv += nq;
+    ctx->stats.fallback += nq;
 }
 
 /* ---- immediate replay (contexts without vertex array objects) ------------------------------- */
@@ -902,7 +928,7 @@ static void draw_glsl120(qgl_context *ctx, const qgl__state *st, const qgl__vert
 {
     if (qgl__glsl120_draw(ctx, st, v, topo, q0, nq, program_key(ctx, st, topo, path), bound))
         return;
-    recount_as_subdiv(ctx, nq);
+    recount_as_fallback(ctx, nq);
     if (ctx->has_vao)
         draw_subdiv(ctx, st, v, topo, q0, nq, st->program, bound);
     else
@@ -1080,9 +1106,12 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
             draw_replay(ctx, &st, v, topo, q0, q1 - q0, p);
         } else if ((p & 15) == QGL__P_MVC) {
             if (!draw_mvc(ctx, &st, v, topo, q0, q1 - q0, p, &bound)) {
-                recount_as_subdiv(ctx, q1 - q0);
+                recount_as_fallback(ctx, q1 - q0);
                 draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
             }
+        } else if ((p & 15) == QGL__P_GRID) {
+            if (!qgl__grid_draw(ctx, &st, v, topo, q0, q1 - q0, &bound))
+                draw_split(ctx, topo, q0, q1 - q0, st.program, &bound);
         } else if ((p & 15) == QGL__P_SUBDIV)
             draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
         else

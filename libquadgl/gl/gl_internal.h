@@ -108,7 +108,8 @@
     X(void, DrawArrays, (GLenum, GLint, GLsizei)) \
     X(void, DrawElements, (GLenum, GLsizei, GLenum, const void *))
 
-/* Entry points from GL 1.4 - 3.2; absent on older contexts (NULL), which the layer checks. */
+/* Entry points from GL 1.4 - 3.2, and those only the calibration (calibrate.c) needs; absent
+ * ones are NULL, which the layer checks. */
 #define QGL__GL_FUNCS_OPT(X) \
     X(void, SecondaryColorPointer, (GLint, GLenum, GLsizei, const void *)) \
     X(void, FogCoordPointer, (GLenum, GLsizei, const void *)) \
@@ -149,7 +150,31 @@
     X(void, BufferStorage, (GLenum, GLsizeiptr, const void *, GLbitfield)) \
     X(void *, MapBufferRange, (GLenum, GLintptr, GLsizeiptr, GLbitfield)) \
     X(GLboolean, UnmapBuffer, (GLenum)) \
-    X(void, MultiDrawArrays, (GLenum, const GLint *, const GLsizei *, GLsizei))
+    X(void, MultiDrawArrays, (GLenum, const GLint *, const GLsizei *, GLsizei)) \
+    X(void, Enable, (GLenum)) \
+    X(void, Disable, (GLenum)) \
+    X(void, Finish, (void)) \
+    X(void, Viewport, (GLint, GLint, GLsizei, GLsizei)) \
+    X(void, PushAttrib, (GLbitfield)) \
+    X(void, PopAttrib, (void)) \
+    X(void, PushClientAttrib, (GLbitfield)) \
+    X(void, PopClientAttrib, (void)) \
+    X(void, MatrixMode, (GLenum)) \
+    X(void, PushMatrix, (void)) \
+    X(void, PopMatrix, (void)) \
+    X(void, LoadIdentity, (void)) \
+    X(void, PolygonMode, (GLenum, GLenum)) \
+    X(void, ShadeModel, (GLenum)) \
+    X(void, ColorMask, (GLboolean, GLboolean, GLboolean, GLboolean)) \
+    X(void, GenFramebuffers, (GLsizei, GLuint *)) \
+    X(void, DeleteFramebuffers, (GLsizei, const GLuint *)) \
+    X(void, BindFramebuffer, (GLenum, GLuint)) \
+    X(void, GenRenderbuffers, (GLsizei, GLuint *)) \
+    X(void, DeleteRenderbuffers, (GLsizei, const GLuint *)) \
+    X(void, BindRenderbuffer, (GLenum, GLuint)) \
+    X(void, RenderbufferStorage, (GLenum, GLenum, GLsizei, GLsizei)) \
+    X(void, FramebufferRenderbuffer, (GLenum, GLenum, GLenum, GLuint)) \
+    X(GLenum, CheckFramebufferStatus, (GLenum))
 
 #define QGL__MEMBER(ret, name, params) ret (*name) params;
 struct qgl__gl {
@@ -446,12 +471,16 @@ struct qgl_context {
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
     struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
     struct qgl__client_arrays *arrays; /* immediate.c: client arrays qglArrayElement reads */
+    struct qgl__grid *grid;   /* subdiv.c: the mean value grid path's buffers and plan, or NULL */
+    struct qgl__costs *costs; /* calibrate.c: this driver's measured costs, or NULL (not
+                                 calibrated, or the measurement failed: no grid in AUTO) */
     int exclusive;            /* desc.assume_exclusive: primitives may wait in pend */
     qgl__verts pend;          /* pending.c: finished primitives not drawn yet, as GL_QUADS */
 };
 
-/* Paths a quad can take. */
-enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3 };
+/* Paths a quad can take: SUBDIV is the CPU fallback of fallback.c, GRID the mean value grid
+ * of subdiv.c. */
+enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3, QGL__P_GRID = 4 };
 /* Bits on top of QGL__P_MVC in the per-quad path byte. */
 enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5, QGL__P_CLIPPED = 1 << 7 };
 /* While planning: a split quad that the shader path would draw the same (AUTO: exact, or too
@@ -589,6 +618,37 @@ void qgl__stream_free(qgl_context *ctx);
 
 /* context.c: whether the context's driver offers an extension. */
 int qgl__has_extension(qgl_context *ctx, const char *name);
+
+/* draw.c: the largest gain (the interpolation weights' error along the corners' dependency n,
+ * n_i per corner) at which every attribute reaching the picture stays within the planner's
+ * budgets (colours and fog half an 8-bit level, texture coordinates 1/32 texel, times
+ * split_error): INFINITY when nothing varies, 0 when the state cannot be judged. n need not
+ * sum to 0 (non-planar quads): the residuals then allow for the value's own range. */
+double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                       const double n[4]);
+
+/* subdiv.c: the mean value grid path. plan: whether quad q (corners idx, clip positions
+ * clip, every w > 0) takes it, by the grid's error bound and (AUTO) the calibrated costs; the
+ * chosen grid is kept for draw, which draws the run q0 .. q0 + nq - 1 of such quads. */
+int qgl__grid_plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                   const double *clip[4], int planar, size_t q);
+int qgl__grid_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
+                   size_t nq, GLint *bound);
+void qgl__grid_free(qgl_context *ctx);
+/* subdiv.c, for the calibration: draw quads of v (QGL_QUADS; their clip positions in
+ * ctx->clip) each as grid number g; draw v's positions and colours as they are in mode. */
+int qgl__grid_draw_all(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, int g);
+int qgl__grid_draw_arrays(qgl_context *ctx, const qgl__verts *v, GLenum mode);
+
+/* calibrate.c: measure this driver's costs (once per renderer string in the process, within
+ * 20 ms; ctx->costs stays NULL when it cannot or a figure is odd), and the model: whether
+ * grid number g is cheaper than the shader path for a quad covering area_px pixels. */
+struct qgl__costs {
+    int valid;
+    double ms, warm_ms, mvc_quad, mvc_px, split_px, grid_tri; /* milliseconds; the others nanoseconds */
+};
+void qgl__calibrate(qgl_context *ctx);
+int qgl__grid_cheaper(const qgl_context *ctx, double area_px, int g);
 
 /* Per-thread current context (read directly on the immediate-mode hot path). */
 extern __attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;

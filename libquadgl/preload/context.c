@@ -87,7 +87,7 @@ static void pl_stats_add(uint64_t t[5], const pl_ctx *x)
     t[0] += st.quads;
     t[1] += st.mvc;
     t[2] += st.split;
-    t[3] += st.subdiv;
+    t[3] += st.subdiv + st.fallback;
     t[4] += st.passthrough;
 }
 

@@ -6,7 +6,10 @@
  * subdivisions (corners carry clip position and attributes, both subdivided bilinearly,
  * which equals subdividing in object space since the projection is linear on homogeneous
  * coordinates) and rasterize it the same way; mvcplane and invbilinearplane rasterize the
- * quad's in-plane cover (sw_plane.c). */
+ * quad's in-plane cover (sw_plane.c). mvcgrid evaluates the exact weights at the
+ * vertices of the core's mean value grid and sends them as triangles too (clip position and
+ * attributes as the weights' combinations of the corners'), for every strictly convex quad
+ * in front of the eye (the others per pixel as mvc). */
 #include "sw_internal.h"
 
 #include <stdlib.h>
@@ -87,6 +90,74 @@ static int draw_subdivided(qgl__ctx *c, int quad, qgl_mesh *mesh)
     return draw_mesh(c, mesh, adaptive ? 3 : 0);
 }
 
+/* The tabulated grid with at least n cells per side (the finest when none has). */
+static const qgl_mvcgrid *grid_for(int n)
+{
+    const qgl_mvcgrid *g = NULL;
+    for (int i = 0; i < qgl_mvcgrid_count(); i++)
+        if ((g = qgl_mvcgrid_at(i)) && g->k >= n)
+            break;
+    return g;
+}
+
+/* Room for one grid's vertices: screen points, weights, and rows of clip + attributes. */
+typedef struct grid_buf {
+    const qgl_mvcgrid *g;
+    double (*pts)[2], (*persp)[4], *rows;
+} grid_buf;
+
+static void draw_grid(qgl__ctx *c, int quad, const grid_buf *b)
+{
+    const qgl_sw_draw_desc *d = c->d;
+    const float *attr = d->attr ? d->attr + quad * 4 * d->nattr : NULL, *clip = d->clip + quad * 16;
+    qgl__quad q;
+    qgl__quad_setup(&q, c->fb, clip, attr, d->nattr);
+    if (q.x0 > q.x1 || q.y0 > q.y1)
+        return;
+    if (!qgl_mvcgrid_weights(b->g, (const double(*)[4])q.px, b->pts, b->persp)) {
+        qgl__draw_mvc(c, &q);
+        return;
+    }
+    /* Clip positions are rounded to float, as the corners are (and as a GL driver takes
+     * them): the edge functions' products then stay exact in double, so a pixel centre on a
+     * corner is decided by the tie rule, not by rounding, in every triangle of the fan there. */
+    int stride = 4 + d->nattr;
+    for (int j = 0; j < b->g->nverts; j++) {
+        double *row = b->rows + (size_t)j * (size_t)stride;
+        for (int k = 0; k < stride; k++) {
+            double s = 0;
+            for (int i = 0; i < 4; i++)
+                s += b->persp[j][i] * (k < 4 ? clip[4 * i + k] : attr[i * d->nattr + k - 4]);
+            row[k] = k < 4 ? (double)(float)s : s;
+        }
+    }
+    for (int t = 0; t < b->g->ntris; t++) {
+        const uint16_t *tr = b->g->tri[t];
+        qgl__triangle(c, b->rows + tr[0] * stride, b->rows + tr[1] * stride, b->rows + tr[2] * stride, d->nattr);
+    }
+}
+
+static int grid_buf_init(grid_buf *b, const qgl_sw_draw_desc *d)
+{
+    memset(b, 0, sizeof *b);
+    if (d->method.method != QGL_SW_MVCGRID)
+        return QGL_SW_OK;
+    if (!(b->g = grid_for(d->method.n)))
+        return QGL_SW_ENOMEM;
+    size_t n = (size_t)b->g->nverts;
+    b->pts = malloc(n * sizeof *b->pts);
+    b->persp = malloc(n * sizeof *b->persp);
+    b->rows = malloc(n * (size_t)(4 + d->nattr) * sizeof *b->rows);
+    return b->pts && b->persp && b->rows ? QGL_SW_OK : QGL_SW_ENOMEM;
+}
+
+static void grid_buf_free(grid_buf *b)
+{
+    free(b->pts);
+    free(b->persp);
+    free(b->rows);
+}
+
 static void draw_quad(qgl__ctx *c, int quad)
 {
     const qgl_sw_draw_desc *d = c->d;
@@ -139,9 +210,13 @@ int qgl_sw_draw(qgl_sw_fb *fb, const qgl_sw_draw_desc *d, qgl_sw_stats *stats)
     qgl__ctx c = {.fb = fb, .d = d};
     qgl_mesh mesh = {0};
     qgl_sw_method m = d->method.method;
+    grid_buf grid;
+    r = grid_buf_init(&grid, d);
     for (int i = 0; i < d->nquads && r == QGL_SW_OK; i++) {
         if (m == QGL_SW_SPLIT02 || m == QGL_SW_SPLIT13)
             draw_split(&c, i, m == QGL_SW_SPLIT02 ? 0 : 1);
+        else if (m == QGL_SW_MVCGRID)
+            draw_grid(&c, i, &grid);
         else if (m == QGL_SW_BILINEAR || m == QGL_SW_ADAPTIVE)
             r = draw_subdivided(&c, i, &mesh);
         else if (m == QGL_SW_MVCPLANE || m == QGL_SW_INVBILINEARPLANE)
@@ -150,6 +225,7 @@ int qgl_sw_draw(qgl_sw_fb *fb, const qgl_sw_draw_desc *d, qgl_sw_stats *stats)
             draw_quad(&c, i);
     }
     qgl_mesh_free(&mesh);
+    grid_buf_free(&grid);
     if (stats) {
         stats->fragments += c.fragments;
         stats->triangles += c.triangles;

@@ -1,7 +1,7 @@
 /* sw_method.c: method names, and parsing "name[:parameters]" into a method description.
  *
- * One table maps names to methods. Parameters follow a colon: bilinear takes the number of
- * subdivisions per side ("bilinear:16"); adaptive takes comma-separated key=value pairs
+ * One table maps names to methods. Parameters follow a colon: bilinear and mvcgrid take the
+ * number of subdivisions per side ("bilinear:16", "mvcgrid:8"); adaptive takes comma-separated key=value pairs
  * q (object threshold), t (texture threshold), area (pixels) and depth ("adaptive:q=1e-3").
  * Anything else is rejected whole, so a typo on a command line never runs a default. */
 #include "sw_internal.h"
@@ -24,7 +24,14 @@ static const char *const names[QGL_SW_METHOD_COUNT] = {
     [QGL_SW_MVCPLANE] = "mvcplane",
     [QGL_SW_MVCPATCH] = "mvcpatch",
     [QGL_SW_INVBILINEARPLANE] = "invbilinearplane",
+    [QGL_SW_MVCGRID] = "mvcgrid",
 };
+
+/* Methods taking a number of cells per side, and its default. */
+static int cells_default(qgl_sw_method m)
+{
+    return m == QGL_SW_BILINEAR ? 8 : m == QGL_SW_MVCGRID ? 4 : 0;
+}
 
 const char *qgl_sw_method_name(qgl_sw_method m)
 {
@@ -67,7 +74,7 @@ static int adaptive_pair(const char *s, size_t len, qgl_adaptive_params *p)
 
 static int parse_params(qgl_sw_method_desc *m, const char *params)
 {
-    if (m->method == QGL_SW_BILINEAR) {
+    if (cells_default(m->method)) {
         double n;
         if (parse_number(params, strlen(params), &n) || n != (int)n || n < 1 || n > 1024)
             return -1;
@@ -101,8 +108,7 @@ int qgl_sw_method_parse(const char *text, qgl_sw_method_desc *out)
         if (strlen(names[m]) != len || memcmp(names[m], text, len))
             continue;
         out->method = (qgl_sw_method)m;
-        if (m == QGL_SW_BILINEAR)
-            out->n = 8;
+        out->n = cells_default(out->method);
         if (colon && parse_params(out, colon + 1)) {
             memset(out, 0, sizeof *out);
             return QGL_SW_EMETHOD;
@@ -115,8 +121,8 @@ int qgl_sw_method_parse(const char *text, qgl_sw_method_desc *out)
 int qgl_sw_method_format(const qgl_sw_method_desc *m, char *buf, size_t size)
 {
     const char *name = qgl_sw_method_name(m->method);
-    if (m->method == QGL_SW_BILINEAR)
-        return snprintf(buf, size, "%s:%d", name, m->n > 0 ? m->n : 8);
+    if (cells_default(m->method))
+        return snprintf(buf, size, "%s:%d", name, m->n > 0 ? m->n : cells_default(m->method));
     if (m->method == QGL_SW_ADAPTIVE) {
         const qgl_adaptive_params *p = &m->adaptive;
         if (!p->threshold_q && !p->threshold_t && !p->min_area_px && !p->max_depth)

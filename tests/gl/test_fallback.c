@@ -28,7 +28,7 @@ static void compare(th_ctx *t, qgl_context *shader, qgl_context *fallback, const
         sc_draw_quad(p);
         img[k] = th_snapshot(t);
         qgl_gl_stats(qgl_gl_current(), &st);
-        th_check(k ? st.subdiv == 1 : st.mvc == 1, "%s: wrong path", name);
+        th_check(k ? st.fallback == 1 : st.mvc == 1, "%s: wrong path", name);
     }
     /* a bow-tie's crossing point is a singularity of the weights: its neighbourhood is skipped */
     double clip[4][4], cx = -100, cy = -100;

@@ -114,8 +114,8 @@ static void run(th_ctx *t, int ci, int strips, qgl_method method)
     char name[64];
     snprintf(name, sizeof name, "oracle_%s%s_%s", cases[ci].name, strips ? "_strip" : "",
              method == QGL_METHOD_AUTO ? "auto" : "mvc");
-    printf("%-32s worst %3d/255, %5d pixels over %d; split %llu mvc %llu subdiv %llu\n", name, worst, over, TOL,
-           (unsigned long long)st.split, (unsigned long long)st.mvc, (unsigned long long)st.subdiv);
+    printf("%-32s worst %3d/255, %5d pixels over %d; split %llu mvc %llu fallback %llu\n", name, worst, over, TOL,
+           (unsigned long long)st.split, (unsigned long long)st.mvc, (unsigned long long)st.fallback);
     if (over)
         th_write(t, ours, name);
     th_check(over == 0, "%s: %d pixels differ from the native split", name);

@@ -151,7 +151,7 @@ static unsigned char *shot(th_ctx *t, void (*draw)(th_ctx *, void *), void *arg,
     delta->quads = s1.quads - s0.quads;
     delta->mvc = s1.mvc - s0.mvc;
     delta->split = s1.split - s0.split;
-    delta->subdiv = s1.subdiv - s0.subdiv;
+    delta->fallback = s1.fallback - s0.fallback;
     delta->passthrough = s1.passthrough - s0.passthrough;
     return th_snapshot(t);
 }
@@ -196,7 +196,7 @@ static void draw_retained_one(th_ctx *t, void *arg)
 
 static int same_counts(const qgl_gl_stats_t *a, const qgl_gl_stats_t *b)
 {
-    return a->quads == b->quads && a->mvc == b->mvc && a->split == b->split && a->subdiv == b->subdiv &&
+    return a->quads == b->quads && a->mvc == b->mvc && a->split == b->split && a->fallback == b->fallback &&
            a->passthrough == b->passthrough;
 }
 
@@ -212,19 +212,19 @@ static void check_case(th_ctx *t, const state_case *s, GLuint tex, qgl_retained 
     th_check(max_diff(p, r) == 0, "%s: retained picture differs from qgl_draw_quads (max %d)", s->name, max_diff(p, r));
     th_check(same_counts(&dp, &dr), "%s: retained paths (mvc %llu split %llu subdiv %llu pass %llu) differ from "
              "qgl_draw_quads' (mvc %llu split %llu subdiv %llu pass %llu)", s->name,
-             (unsigned long long)dr.mvc, (unsigned long long)dr.split, (unsigned long long)dr.subdiv,
+             (unsigned long long)dr.mvc, (unsigned long long)dr.split, (unsigned long long)dr.fallback,
              (unsigned long long)dr.passthrough, (unsigned long long)dp.mvc, (unsigned long long)dp.split,
-             (unsigned long long)dp.subdiv, (unsigned long long)dp.passthrough);
+             (unsigned long long)dp.fallback, (unsigned long long)dp.passthrough);
     th_check(same_counts(&dp, &dn), "%s: paths with a native callback differ", s->name);
     th_check(ran == s->native_quads + s->native_strip, "%s: native callback ran %d times, expected %d", s->name, ran,
              s->native_quads + s->native_strip);
     th_check(max_diff(p, n) <= 1, "%s: picture with the native callback differs by %d", s->name, max_diff(p, n));
     if (s->lit && !s->flat && !s->line)
-        th_check(s->positional ? dp.mvc + dp.subdiv == 4 : dp.mvc + dp.subdiv == 2,
+        th_check(s->positional ? dp.mvc + dp.fallback == 4 : dp.mvc + dp.fallback == 2,
                  "%s: %llu quads on the smooth path; expected the quads batch's 2%s", s->name,
-                 (unsigned long long)(dp.mvc + dp.subdiv), s->positional ? " and the strip's 2" : " only");
+                 (unsigned long long)(dp.mvc + dp.fallback), s->positional ? " and the strip's 2" : " only");
     printf("%-15s mvc %llu split %llu subdiv %llu pass %llu, native callback %d\n", s->name,
-           (unsigned long long)dp.mvc, (unsigned long long)dp.split, (unsigned long long)dp.subdiv,
+           (unsigned long long)dp.mvc, (unsigned long long)dp.split, (unsigned long long)dp.fallback,
            (unsigned long long)dp.passthrough, ran);
     free(p);
     free(r);

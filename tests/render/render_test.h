@@ -21,9 +21,9 @@ static int failures;
         }                                                                    \
     } while (0)
 
-static const char *const all_methods[] = {"split02",  "split13",     "mvc",        "mvc64",
-                                          "bilinear:4", "adaptive", "invbilinear", "projective",
-                                          "exact",    "mvcplane",   "mvcpatch", "invbilinearplane"};
+static const char *const all_methods[] = {"split02",  "split13",  "mvc",        "mvc64",    "bilinear:4",
+                                          "adaptive", "invbilinear", "projective", "exact", "mvcplane",
+                                          "mvcpatch", "invbilinearplane", "mvcgrid:4", "mvcgrid:16"};
 #define N_ALL_METHODS ((int)(sizeof all_methods / sizeof all_methods[0]))
 
 /* A framebuffer of nattr channels with depth, counts and facing. */
