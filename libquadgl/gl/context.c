@@ -258,6 +258,22 @@ void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j)
                QGL__MATERIAL_FLOATS * sizeof(float));
 }
 
+void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t n)
+{
+    unsigned m = s->mask;
+    memcpy(d->pos + 4 * i, s->pos + 4 * j, 4 * n * sizeof(float));
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m & (1u << a)) {
+            size_t k = (size_t)qgl__attribs[a].floats;
+            memcpy(d->attr[a] + k * i, s->attr[a] + k * j, k * n * sizeof(float));
+        }
+    if (m & QGL__A_EDGE)
+        memcpy(d->edge + i, s->edge + j, n);
+    if (m & QGL__A_MATERIAL)
+        memcpy(d->mat + QGL__MATERIAL_FLOATS * i, s->mat + QGL__MATERIAL_FLOATS * j,
+               QGL__MATERIAL_FLOATS * n * sizeof(float));
+}
+
 void qgl__verts_free(qgl__verts *v)
 {
     free(v->pos);

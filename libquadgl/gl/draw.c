@@ -410,7 +410,7 @@ static int plane_weights(const qgl_plane *pl, const double sp[4], double out[4])
 /* Whether the sampled gain max |delta| (n unit length) times SPLIT_SAFETY stays within limit.
  * The crossing comes first: most quads that fail, fail there, after one weight evaluation. */
 static int gain_within(const double *clip[4], const GLint vp[4], const double n[4], double limit,
-                       const qgl_plane *pl)
+                       const double obj[4][3])
 {
     double v[4][2], w[4], cl[4][4], pts[9][2];
     for (int i = 0; i < 4; i++) { /* in pixels, as the shader path weighs (n is unchanged) */
@@ -426,13 +426,14 @@ static int gain_within(const double *clip[4], const GLint vp[4], const double n[
         nmax = fabs(n[i]) > nmax ? fabs(n[i]) : nmax;
     if (limit * nmax >= 1)
         return 1;
-    if (limit * nmax < 0.125)
+    qgl_plane pl; /* the samples need AUTO's in-plane weights: the frame only now */
+    if (limit * nmax < 0.125 || qgl_plane_frame(obj, &pl) != 0)
         return 0;
     limit /= SPLIT_SAFETY;
     for (int k = 0; k < 9; k++) {
         double mvc[4], sp[4];
         split_weights(v, w, 0, pts[k][0], pts[k][1], sp);
-        if (plane_weights(pl, sp, mvc) != QGL_INSIDE)
+        if (plane_weights(&pl, sp, mvc) != QGL_INSIDE)
             return 0;
         for (int a = 0; a < 2; a++) {
             split_weights(v, w, a, pts[k][0], pts[k][1], sp);
@@ -547,11 +548,10 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
                            const double *clip[4])
 {
     double n[4], p[4][3];
-    qgl_plane pl;
-    if (!dependency(clip, n) || !object_corners(v, idx, p) || qgl_plane_frame(p, &pl) != 0)
+    if (!dependency(clip, n) || !object_corners(v, idx, p))
         return 0;
     double limit = qgl__gain_limit(ctx, st, v, idx, n);
-    return limit > 0 && gain_within(clip, st->viewport, n, limit, &pl);
+    return limit > 0 && gain_within(clip, st->viewport, n, limit, (const double(*)[3])p);
 }
 
 /* Whether the driver may clip at this clip coordinate: outside, or so close inside that the

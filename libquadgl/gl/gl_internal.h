@@ -151,6 +151,9 @@
     X(void *, MapBufferRange, (GLenum, GLintptr, GLsizeiptr, GLbitfield)) \
     X(GLboolean, UnmapBuffer, (GLenum)) \
     X(void, MultiDrawArrays, (GLenum, const GLint *, const GLsizei *, GLsizei)) \
+    X(GLsync, FenceSync, (GLenum, GLbitfield)) \
+    X(GLenum, ClientWaitSync, (GLsync, GLbitfield, GLuint64)) \
+    X(void, DeleteSync, (GLsync)) \
     X(void, Enable, (GLenum)) \
     X(void, Disable, (GLenum)) \
     X(void, Finish, (void)) \
@@ -288,6 +291,8 @@ void qgl__verts_free(qgl__verts *v);
 /* Vertex j of s (its position and every attribute in s->mask) to vertex i of d, which has room;
  * d may be s (i != j). */
 void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j);
+/* Vertices j .. j + n - 1 of s to i .. i + n - 1 of d (distinct arrays). */
+void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t n);
 
 /* ---- the fixed-function state a generated program reproduces (its key) ------------------ */
 
@@ -412,11 +417,22 @@ enum {
 #define QGL__MAX_PROGRAMS 64
 
 /* stream.c: the buffer batches are copied into for the driver (see there). */
+typedef struct qgl__stream_buf {
+    GLuint buf;
+    unsigned char *map;       /* persistent mapping, or NULL */
+    size_t size;
+    GLsync done;              /* retired: signalled once the driver has read it all */
+} qgl__stream_buf;
+
+enum { QGL__STREAM_POOL = 4 };
+
 typedef struct qgl__stream {
     GLuint buf;
     unsigned char *map;       /* persistent mapping, or NULL */
     size_t size, head;        /* bytes in buf, bytes used */
     int persistent;           /* buffer storage available */
+    qgl__stream_buf pool[QGL__STREAM_POOL]; /* retired buffers, oldest first */
+    int npool;
 } qgl__stream;
 
 struct qgl_context {

@@ -54,10 +54,14 @@ static int append(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size
     if (!qgl__verts_reserve(p, n0 + 4 * nq, p->mask | v->mask))
         return 0;
     fill_current(ctx, p, 0, n0, v->mask & ~p->mask & ~(unsigned)QGL__A_EDGE);
-    int shift = topo == QGL_QUAD_STRIP && qgl__flat_corner(ctx, NULL, topo) == 2 ? 3 : 0;
-    for (size_t q = 0; q < nq; q++)
-        for (int c = 0; c < 4; c++)
-            qgl__verts_copy(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
+    if (topo == QGL_QUADS) {
+        qgl__verts_copy_range(p, n0, v, 0, 4 * nq);
+    } else {
+        int shift = qgl__flat_corner(ctx, NULL, topo) == 2 ? 3 : 0;
+        for (size_t q = 0; q < nq; q++)
+            for (int c = 0; c < 4; c++)
+                qgl__verts_copy(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
+    }
     p->n = n0 + 4 * nq;
     fill_current(ctx, p, n0, p->n, p->mask & ~v->mask);
     p->mask |= v->mask;

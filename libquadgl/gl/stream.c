@@ -2,12 +2,16 @@
  *
  * A batch's arrays are copied into a buffer the driver keeps mapped (GL 4.4 buffer storage,
  * persistent and coherent), each batch after the previous one; when the buffer is full it is
- * replaced by a fresh one (the driver frees the old one once the draws reading it are done).
- * So writing never waits for the driver, and no draw in flight sees its data change.
+ * retired with a fence and replaced: by a retired buffer whose fence says the driver has read
+ * it (a frame or so later), or by a fresh one. So writing never waits for the driver, no draw
+ * in flight sees its data change, and steady drawing reuses a few buffers instead of
+ * faulting in new memory.
  * Rewriting one buffer with glBufferSubData instead made llvmpipe finish its whole scene at
  * every batch (the buffer was still in use), several times the cost of the draws themselves.
  * Without buffer storage the same discipline runs on ranges mapped unsynchronized, the buffer
  * orphaned when full. */
+#include <string.h>
+
 #include "gl_internal.h"
 
 /* Bytes per buffer: a few batches of a typical frame, small next to a program's memory. */
@@ -24,6 +28,53 @@ static void stream_release(qgl_context *ctx)
     s->map = NULL;
 }
 
+static void pool_drop(qgl_context *ctx, int i)
+{
+    qgl__stream *s = &ctx->stream;
+    ctx->gl.DeleteBuffers(1, &s->pool[i].buf);
+    if (s->pool[i].done)
+        ctx->gl.DeleteSync(s->pool[i].done);
+    memmove(s->pool + i, s->pool + i + 1, (size_t)(--s->npool - i) * sizeof *s->pool);
+}
+
+/* The current buffer joins the pool, fenced; the oldest goes when the pool is full. */
+static void retire(qgl_context *ctx)
+{
+    qgl__stream *s = &ctx->stream;
+    if (!s->buf)
+        return;
+    if (!s->persistent || !ctx->gl.FenceSync) {
+        stream_release(ctx);
+        return;
+    }
+    if (s->npool == QGL__STREAM_POOL)
+        pool_drop(ctx, 0);
+    s->pool[s->npool++] = (qgl__stream_buf){s->buf, s->map, s->size, ctx->gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)};
+    s->buf = 0;
+    s->map = NULL;
+}
+
+/* A retired buffer of at least bytes the driver is done with, made current; 0 if none. */
+static int reuse(qgl_context *ctx, size_t bytes)
+{
+    qgl__stream *s = &ctx->stream;
+    for (int i = 0; i < s->npool; i++) {
+        qgl__stream_buf *b = &s->pool[i];
+        if (b->size < bytes || !b->done)
+            continue;
+        GLenum r = ctx->gl.ClientWaitSync(b->done, 0, 0);
+        if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED)
+            continue;
+        ctx->gl.DeleteSync(b->done);
+        s->buf = b->buf, s->map = b->map, s->size = b->size;
+        memmove(s->pool + i, s->pool + i + 1, (size_t)(--s->npool - i) * sizeof *s->pool);
+        ctx->gl.BindBuffer(GL_ARRAY_BUFFER, s->buf);
+        s->head = 0;
+        return 1;
+    }
+    return 0;
+}
+
 /* A fresh buffer of at least bytes, bound to GL_ARRAY_BUFFER. */
 static int stream_renew(qgl_context *ctx, size_t bytes)
 {
@@ -31,8 +82,11 @@ static int stream_renew(qgl_context *ctx, size_t bytes)
     qgl__stream *s = &ctx->stream;
     const GLbitfield persistent = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     size_t size = bytes > QGL__STREAM_SIZE ? bytes : QGL__STREAM_SIZE;
-    if (s->buf && s->persistent)
-        stream_release(ctx);
+    if (s->persistent) {
+        retire(ctx);
+        if (reuse(ctx, bytes))
+            return 1;
+    }
     if (!s->buf)
         gl->GenBuffers(1, &s->buf);
     gl->BindBuffer(GL_ARRAY_BUFFER, s->buf);
@@ -84,4 +138,6 @@ void qgl__stream_end(qgl_context *ctx)
 void qgl__stream_free(qgl_context *ctx)
 {
     stream_release(ctx);
+    while (ctx->stream.npool)
+        pool_drop(ctx, ctx->stream.npool - 1);
 }
