@@ -71,6 +71,8 @@ typedef struct qgl_gl_stats_t {
     uint64_t passthrough; /* handed to the driver as is (polygon mode, select/feedback) */
     uint64_t draws;       /* driver draw calls issued by the layer */
     uint64_t subdiv_triangles; /* triangles the grid and the fallback produced */
+    uint64_t uploads;     /* display-list geometry copied into a buffer object (once per list,
+                             again only when a value it takes from the current state changed) */
 } qgl_gl_stats_t;
 
 /* The driver's costs the planner weighs (measured when the context is created, off screen,

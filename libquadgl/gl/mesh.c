@@ -152,6 +152,7 @@ static int resident(qgl_context *ctx, qgl__mesh *m, const void *owner)
     }
     gl->BindBuffer(GL_ARRAY_BUFFER, m->bo);
     gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, NULL, GL_STATIC_DRAW);
+    ctx->stats.uploads++;
     size_t off = 0;
     gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(16 * n), m->v.pos);
     m->off_pos = 0;

@@ -411,6 +411,6 @@ PL_EXPORT void glEnd(void)
         }
         return;
     }
-    pl_draw_prim(x, &x->prim);
+    PL_TIMED(pl_draw_prim(x, &x->prim));
     pl_note_prim_current(x, &x->prim);
 }

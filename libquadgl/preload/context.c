@@ -9,7 +9,7 @@
  * found by the window system's handle in a short list under a mutex; lookups happen only at
  * creation, MakeCurrent and destruction. A context nobody told us about (a program that
  * reached MakeCurrent past us) is detected through GetCurrentContext when it first draws a
- * quad. Counters of destroyed contexts are kept for the statistics line. */
+ * quad. A context's counters join the statistics' totals at each frame and when it goes. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -19,7 +19,6 @@ __thread pl_ctx *pl_tls_ctx __attribute__((tls_model("initial-exec")));
 
 static pthread_mutex_t pl_ctx_lock = PTHREAD_MUTEX_INITIALIZER;
 static pl_ctx *pl_ctx_head;
-static uint64_t pl_dead_stats[5]; /* quads, mvc, split, subdiv, passthrough */
 
 static pl_ctx *pl_find_locked(int api, void *handle)
 {
@@ -78,19 +77,6 @@ void pl_ctx_created(int api, void *handle, int share_api, void *share_handle)
     pthread_mutex_unlock(&pl_ctx_lock);
 }
 
-static void pl_stats_add(uint64_t t[5], const pl_ctx *x)
-{
-    qgl_gl_stats_t st;
-    if (!x->qgl)
-        return;
-    qgl_gl_stats(x->qgl, &st);
-    t[0] += st.quads;
-    t[1] += st.mvc;
-    t[2] += st.split;
-    t[3] += st.subdiv + st.fallback;
-    t[4] += st.passthrough;
-}
-
 static void pl_ctx_free(pl_ctx *x)
 {
     pl_prim_free(&x->prim);
@@ -131,7 +117,7 @@ void pl_ctx_destroyed(int api, void *handle)
     pthread_mutex_lock(&pl_ctx_lock);
     x = pl_find_locked(api, handle);
     if (x) {
-        pl_stats_add(pl_dead_stats, x);
+        pl_stats_publish(x);
         pl_drop_qgl(x, x == pl_tls_ctx);
         pl_retire_locked(x);
     }
@@ -213,11 +199,10 @@ qgl_context *pl_ctx_qgl(pl_ctx *x)
     return x->qgl;
 }
 
-void pl_stats_total(uint64_t out[5])
+void pl_ctx_publish_all(void)
 {
     pthread_mutex_lock(&pl_ctx_lock);
-    memcpy(out, pl_dead_stats, sizeof pl_dead_stats);
     for (pl_ctx *x = pl_ctx_head; x; x = x->next)
-        pl_stats_add(out, x);
+        pl_stats_publish(x);
     pthread_mutex_unlock(&pl_ctx_lock);
 }

@@ -5,8 +5,7 @@
  * (auto | mvc | split | subdiv | off, and replay: capture, then hand the quads back to the
  * driver unchanged, a check of the capture itself), QUADGL_STATS=1, QUADGL_LOG (warn | info
  * | debug) and QUADGL_TOLERANCE (pixels). They are read with secure_getenv, so a setuid
- * program ignores them. With QUADGL_STATS an atexit handler prints one line to stderr that
- * adds up every context's counters, live or destroyed. */
+ * program ignores them. QUADGL_STATS and QUADGL_STATS_INTERVAL (seconds) are stats.c's. */
 #include "preload.h"
 
 #include <stdarg.h>
@@ -15,8 +14,6 @@
 #include <string.h>
 
 pl_config pl_cfg = {.capture = 1, .method = 0, .log_level = PL_LOG_WARN};
-
-static uint64_t pl_passthrough_quads;
 
 void pl_log(int level, const char *fmt, ...)
 {
@@ -30,29 +27,16 @@ void pl_log(int level, const char *fmt, ...)
     va_end(ap);
 }
 
-void pl_count_passthrough(uint64_t quads)
-{
-    __atomic_add_fetch(&pl_passthrough_quads, quads, __ATOMIC_RELAXED);
-}
-
 /* The counters of the statistics line, for programs and tests that want them without
  * parsing stderr: quads, mvc, split, subdiv, passthrough. */
 QGL_API void qgl_preload_stats(uint64_t out[5]);
 QGL_API void qgl_preload_stats(uint64_t out[5])
 {
-    uint64_t passthrough = __atomic_load_n(&pl_passthrough_quads, __ATOMIC_RELAXED);
-    pl_stats_total(out);
-    out[0] += passthrough;
-    out[4] += passthrough;
-}
-
-static void pl_print_stats(void)
-{
-    uint64_t t[5];
-    qgl_preload_stats(t);
-    fprintf(stderr, "quadgl: %llu quads: mvc=%llu, split=%llu, subdiv=%llu, passthrough=%llu\n",
-            (unsigned long long)t[0], (unsigned long long)t[1], (unsigned long long)t[2],
-            (unsigned long long)t[3], (unsigned long long)t[4]);
+    uint64_t t[PL_ST_COUNT];
+    pl_ctx_publish_all();
+    pl_stats_totals(t);
+    for (int k = 0; k < 5; k++)
+        out[k] = t[k];
 }
 
 static void pl_read_method(const char *s)
@@ -91,6 +75,19 @@ static void pl_read_log(const char *s)
         pl_log(PL_LOG_WARN, "QUADGL_LOG=%s unknown; using warn", s);
 }
 
+static void pl_read_interval(const char *s)
+{
+    char *end;
+    double v;
+    if (!s || !*s)
+        return;
+    v = strtod(s, &end);
+    if (*end || !(v > 0.0) || v > 1e6)
+        pl_log(PL_LOG_WARN, "QUADGL_STATS_INTERVAL=%s is not a positive number of seconds; ignored", s);
+    else
+        pl_cfg.stats_interval = v;
+}
+
 static void pl_read_tolerance(const char *s)
 {
     char *end;
@@ -110,8 +107,8 @@ __attribute__((constructor)) static void pl_init(void)
     pl_read_log(secure_getenv("QUADGL_LOG"));
     pl_read_method(secure_getenv("QUADGL_METHOD"));
     pl_read_tolerance(secure_getenv("QUADGL_TOLERANCE"));
-    pl_cfg.stats = stats && *stats && strcmp(stats, "0") != 0;
-    if (pl_cfg.stats)
-        atexit(pl_print_stats);
+    pl_read_interval(secure_getenv("QUADGL_STATS_INTERVAL"));
+    pl_cfg.stats = (stats && *stats && strcmp(stats, "0") != 0) || pl_cfg.stats_interval > 0;
+    pl_stats_init();
     pl_log(PL_LOG_INFO, "loaded (%s)", !pl_cfg.capture ? "off" : pl_cfg.replay ? "replay" : "capturing");
 }

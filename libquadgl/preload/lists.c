@@ -623,7 +623,7 @@ PL_EXPORT void glCallList(GLuint list)
         REAL(glCallList)(list);
         return;
     }
-    pl_list_exec(x, list, 0);
+    PL_TIMED(pl_list_exec(x, list, 0));
 }
 
 /* Whether any of the names (plus the current base) is one of ours. */
@@ -660,7 +660,7 @@ PL_EXPORT void glCallLists(GLsizei n, GLenum type, const void *lists)
         return;
     }
     if (pl_any_ours(x, names, n))
-        pl_exec_calls(x, names, (size_t)n, 0);
+        PL_TIMED(pl_exec_calls(x, names, (size_t)n, 0));
     else
         REAL(glCallLists)(n, type, lists);
     free(names);

@@ -50,14 +50,40 @@ typedef struct pl_config {
     int method;       /* a qgl_method for the GL path */
     float tolerance;  /* QUADGL_TOLERANCE, 0 = the GL path's default */
     int stats;        /* QUADGL_STATS=1 */
+    double stats_interval; /* QUADGL_STATS_INTERVAL, seconds (0: none) */
     int log_level;
 } pl_config;
 
 extern pl_config pl_cfg;
 void pl_log(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Counters of quads the library drew itself (replayed to the driver), all contexts. */
+/* ---- statistics (stats.c) ------------------------------------------------------------------ */
+
+typedef struct pl_ctx pl_ctx;
+
+enum { PL_ST_QUADS, PL_ST_MVC, PL_ST_SPLIT, PL_ST_SUBDIV, PL_ST_PASS, PL_ST_DRAWS, PL_ST_UPLOADS, PL_ST_FRAMES,
+       PL_ST_NS, PL_ST_COUNT };
+
+/* Quads the library drew itself (replayed to the driver), all contexts. */
 void pl_count_passthrough(uint64_t quads);
+void pl_stats_init(void);
+/* A frame ended (a swap) on x's thread; every context's counters join the totals then. */
+void pl_stats_frame(pl_ctx *x);
+void pl_stats_publish(pl_ctx *x);
+void pl_stats_totals(uint64_t out[PL_ST_COUNT]);
+/* Time in quadgl's drawing, counted only for QUADGL_STATS_INTERVAL. */
+uint64_t pl_clock_ns(void);
+void pl_stats_spent(uint64_t ns);
+#define PL_TIMED(call)                                      \
+    do {                                                    \
+        if (PL_UNLIKELY(pl_cfg.stats_interval > 0)) {       \
+            uint64_t pl_t0_ = pl_clock_ns();                \
+            call;                                           \
+            pl_stats_spent(pl_clock_ns() - pl_t0_);         \
+        } else {                                            \
+            call;                                           \
+        }                                                   \
+    } while (0)
 
 /* ---- real driver functions (real.c) ------------------------------------------------------- */
 
@@ -82,8 +108,6 @@ extern int pl_untracked;
 const char *pl_self_path(void);
 
 /* ---- captured primitives ------------------------------------------------------------------- */
-
-typedef struct pl_ctx pl_ctx;
 
 #define PL_TEXUNITS QGL_MAX_TEXUNITS
 #define PL_GENERICS 16 /* generic attributes a primitive may give (replayed to the driver) */
@@ -156,6 +180,7 @@ struct pl_ctx {
     int list_depth;
     int bound;               /* threads it is current on (0 or 1) */
     int dead;                /* destroyed while current elsewhere: freed at release */
+    uint64_t published[PL_ST_COUNT]; /* its GL path's counters already in the totals */
     struct pl_ctx *next;
 };
 
@@ -170,7 +195,7 @@ void pl_ctx_bind(int api, void *handle);   /* this thread's current (NULL handle
 void pl_ctx_destroyed(int api, void *handle);
 /* The GL path, created on first use, told what changed since it last drew. */
 qgl_context *pl_ctx_qgl(pl_ctx *x);
-void pl_stats_total(uint64_t out[5]);      /* quads, mvc, split, subdiv, passthrough */
+void pl_ctx_publish_all(void);              /* every live context's counters into the totals */
 
 /* ---- tracking what calls change (track.c) ------------------------------------------------ */
 

@@ -111,6 +111,18 @@ static pl_voidfn pl_getproc_via(const char *real_name, const char *name)
     return fn;
 }
 
+/* A swap ends a frame: the statistics count it. */
+typedef void (*pl_glx_swap)(void *, unsigned long);
+
+PL_EXPORT void glXSwapBuffers(void *dpy, unsigned long drawable)
+{
+    PL_NEXT(pl_glx_swap, "glXSwapBuffers");
+    if (pl_cfg.stats)
+        pl_stats_frame(pl_tls_ctx);
+    if (real_fn)
+        real_fn(dpy, drawable);
+}
+
 PL_EXPORT pl_voidfn glXGetProcAddressARB(const GLubyte *name)
 {
     return pl_getproc_via("glXGetProcAddressARB", (const char *)name);
@@ -153,6 +165,16 @@ PL_EXPORT unsigned eglDestroyContext(void *dpy, void *ctx)
     PL_NEXT(pl_egl_destroy, "eglDestroyContext");
     pl_ctx_destroyed(PL_API_EGL, ctx);
     return real_fn ? real_fn(dpy, ctx) : 0;
+}
+
+typedef unsigned (*pl_egl_swap)(void *, void *);
+
+PL_EXPORT unsigned eglSwapBuffers(void *dpy, void *surface)
+{
+    PL_NEXT(pl_egl_swap, "eglSwapBuffers");
+    if (pl_cfg.stats)
+        pl_stats_frame(pl_tls_ctx);
+    return real_fn ? real_fn(dpy, surface) : 0;
 }
 
 PL_EXPORT pl_voidfn eglGetProcAddress(const char *name)
@@ -284,10 +306,12 @@ const pl_proc pl_winsys_table[] = {
     {"glXCreateNewContext", (void *)glXCreateNewContext},
     {"glXCreateContextAttribsARB", (void *)glXCreateContextAttribsARB},
     {"glXDestroyContext", (void *)glXDestroyContext},
+    {"glXSwapBuffers", (void *)glXSwapBuffers},
     {"eglGetProcAddress", (void *)eglGetProcAddress},
     {"eglMakeCurrent", (void *)eglMakeCurrent},
     {"eglCreateContext", (void *)eglCreateContext},
     {"eglDestroyContext", (void *)eglDestroyContext},
+    {"eglSwapBuffers", (void *)eglSwapBuffers},
     {"OSMesaGetProcAddress", (void *)OSMesaGetProcAddress},
     {"OSMesaMakeCurrent", (void *)OSMesaMakeCurrent},
     {"OSMesaCreateContext", (void *)OSMesaCreateContext},
