@@ -149,6 +149,7 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
         create_objects(ctx);
     choose_shader_path(ctx, glsl120_ok);
     qgl__calibrate(ctx);
+    memset(&ctx->stats, 0, sizeof ctx->stats); /* the calibration's draws are not the program's */
     return ctx;
 }
 

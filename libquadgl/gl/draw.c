@@ -1045,11 +1045,12 @@ static size_t change_quad(qgl_topology topo, size_t i)
 }
 
 /* Whether a run of this path is drawn by handing its vertices to the driver's immediate mode
- * (the split and the driver's own quads of a captured primitive: the driver then merges it
- * with the primitives around it, as it would have natively). */
+ * (the split and the driver's own quads of a small captured primitive: the driver then merges
+ * it with the primitives around it, as it would have natively). */
 static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
 {
-    return !ctx->has_vao || ((flags & QGL__DRAW_IMMEDIATE) && ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
+    return !ctx->has_vao || ((flags & (QGL__DRAW_IMMEDIATE | QGL__DRAW_ARRAYS)) == QGL__DRAW_IMMEDIATE &&
+                             ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
 }
 
 int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,

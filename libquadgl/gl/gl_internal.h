@@ -529,8 +529,10 @@ int qgl__batch_to_verts(const qgl_quad_batch *b, qgl__verts *v);
 int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
 /* qgl__draw with the cached facts of a retained batch (NULL: none) and QGL__DRAW_* flags. */
 enum {
-    QGL__DRAW_IMMEDIATE = 1 /* v was captured from glBegin/glEnd and the caller sets the current
-                               attributes afterwards: split runs may be replayed as such */
+    QGL__DRAW_IMMEDIATE = 1, /* v was captured from glBegin/glEnd and the caller sets the current
+                                attributes afterwards: split runs may be replayed as such */
+    QGL__DRAW_ARRAYS = 2     /* with IMMEDIATE: split runs are drawn from our arrays all the same
+                                (a batch large enough that one upload costs less than its calls) */
 };
 int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
                     const qgl__change *chg, size_t nchg);

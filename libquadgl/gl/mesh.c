@@ -35,6 +35,14 @@ static int grow(void **p, size_t *cap, size_t n, size_t elem)
 
 int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg)
 {
+    qgl__mesh_prim *last = m->nprim ? &m->prim[m->nprim - 1] : NULL;
+    /* Quads are independent: GL_QUADS primitives in a row are one (a list of single quads is
+     * then planned and drawn once, not once a quad). */
+    if (last && mode == GL_QUADS && last->mode == GL_QUADS && !nchg && !last->nchg && count % 4 == 0 &&
+        last->count % 4 == 0 && last->first + last->count == first) {
+        last->count += (uint32_t)count;
+        return 1;
+    }
     if (!grow((void **)&m->prim, &m->capprim, m->nprim + 1, sizeof *m->prim) ||
         !grow((void **)&m->chg, &m->capchg, m->nchg + nchg, sizeof *m->chg))
         return 0;

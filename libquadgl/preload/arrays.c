@@ -185,7 +185,7 @@ static int pl_array_draw(GLenum mode, GLint first, GLsizei count, GLenum type, c
         pl_count_passthrough(pl_prim_quads(&x->scratch));
         rc = -1;
     } else if (rc == 0) {
-        PL_TIMED(pl_draw_prim(x, &x->scratch));
+        PL_TIMED(pl_end_prim(x, &x->scratch));
     }
     return rc;
 }

@@ -181,6 +181,8 @@ int pl_hook_edgeflag(pl_ctx *x, GLboolean flag)
         pl_cap_edgeflag(x, flag);
         return 1;
     }
+    if (x->batch.v.n && !(x->batch.v.mask & QGL__A_EDGE))
+        pl_batch_keep(x, QGL__NATTR);
     if (x->compiling) {
         const float v[4] = {flag ? 1.0f : 0.0f, 0, 0, 0};
         pl_list_attrib(x, QGL__NATTR, v);
@@ -225,6 +227,7 @@ void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
 int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
 {
     if (!x->capturing) {
+        pl_batch_flush(x);
         if (x->compiling)
             pl_list_state(x);
         return 0;
@@ -270,6 +273,7 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
     if (!x->capturing) {
+        pl_batch_flush(x);
         if (x->compiling)
             pl_list_state(x);
         return 0;
@@ -288,6 +292,7 @@ int pl_hook_array_element(pl_ctx *x, GLint i)
         pl_cap_array_element(x, i);
         return 1;
     }
+    pl_batch_flush(x);
     x->cur_known = 0; /* its attributes become the current ones */
     if (x->compiling) {
         pl_list_state(x);
@@ -367,6 +372,7 @@ PL_EXPORT void glBegin(GLenum mode)
     }
     /* In a list every primitive is ours (the list's geometry); outside, only quads. */
     if ((!quad && !(x->compiling && pl_valid_mode(mode))) || x->native_begin) {
+        pl_batch_flush(x);
         if (x->compiling)
             pl_list_state(x);
         if (!x->native_begin && pl_valid_mode(mode))
@@ -411,6 +417,6 @@ PL_EXPORT void glEnd(void)
         }
         return;
     }
-    PL_TIMED(pl_draw_prim(x, &x->prim));
+    PL_TIMED(pl_end_prim(x, &x->prim));
     pl_note_prim_current(x, &x->prim);
 }

@@ -81,6 +81,7 @@ static void pl_ctx_free(pl_ctx *x)
 {
     pl_prim_free(&x->prim);
     pl_prim_free(&x->scratch);
+    pl_prim_free(&x->batch);
     pl_share_unref(x->share);
     free(x);
 }

@@ -28,14 +28,15 @@ void pl_log(int level, const char *fmt, ...)
 }
 
 /* The counters of the statistics line, for programs and tests that want them without
- * parsing stderr: quads, mvc, split, subdiv, passthrough. */
-QGL_API void qgl_preload_stats(uint64_t out[5]);
-QGL_API void qgl_preload_stats(uint64_t out[5])
+ * parsing stderr: quads, mvc, split, subdiv, passthrough, draws, list uploads, frames. */
+QGL_API void qgl_preload_stats(uint64_t out[8]);
+QGL_API void qgl_preload_stats(uint64_t out[8])
 {
     uint64_t t[PL_ST_COUNT];
+    _Static_assert(PL_ST_FRAMES == 7, "the statistics line's counters come first, in its order");
     pl_ctx_publish_all();
     pl_stats_totals(t);
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < 8; k++)
         out[k] = t[k];
 }
 

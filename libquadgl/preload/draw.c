@@ -130,6 +130,7 @@ int pl_prim_for_driver(pl_ctx *x, const pl_prim *p)
 
 void pl_draw_prim(pl_ctx *x, pl_prim *p)
 {
+    pl_batch_flush(x);
     pl_prim_backfill(x, p);
     if (!pl_prim_for_driver(x, p)) {
         pl_draw_gl(pl_ctx_qgl(x), p);
@@ -138,4 +139,128 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
         return;
     }
     pl_replay(x, p);
+}
+
+/* ---- batches ------------------------------------------------------------------------------- */
+
+/* Vertices a batch may hold: what an immediate-mode chunk holds. */
+#define PL_BATCH_MAX 16384
+/* From this many vertices on, the batch's split quads are drawn from our arrays (one upload,
+ * one draw) rather than handed back to the driver's immediate mode call by call. */
+#define PL_BATCH_ARRAYS 64
+
+/* Vertices [from, to) of b take the current value of slot a (QGL__NATTR: the edge flag). */
+static void pl_batch_fill(pl_ctx *x, qgl__verts *v, int a, size_t from, size_t to)
+{
+    if (a == QGL__NATTR) {
+        memset(v->edge + from, pl_current_edge(x), to - from);
+        return;
+    }
+    float value[4];
+    int k = qgl__attribs[a].floats;
+    pl_current_value(x, a, value);
+    for (size_t i = from; i < to; i++)
+        memcpy(v->attr[a] + (size_t)k * i, value, (size_t)k * sizeof(float));
+}
+
+static unsigned pl_slot_bit(int a)
+{
+    return a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
+}
+
+void pl_batch_keep(pl_ctx *x, int a)
+{
+    qgl__verts *v = &x->batch.v;
+    unsigned bit = pl_slot_bit(a);
+    if (!qgl__verts_reserve(v, v->n, v->mask | bit)) {
+        pl_batch_flush(x);
+        return;
+    }
+    pl_batch_fill(x, v, a, 0, v->n);
+    v->mask |= bit;
+}
+
+/* Whether p, just finished, may wait in the batch: quads only, nothing the GL path would give
+ * back to the driver, and a context whose frames end through us (a program that swaps through
+ * a pointer we never handed out would show frames without their last quads). */
+static int pl_batchable(pl_ctx *x, const pl_prim *p)
+{
+    if (p->mode != GL_QUADS || p->nmat || p->generic_given || p->lost || p->v.n < 4 ||
+        p->v.n + x->batch.v.n > PL_BATCH_MAX)
+        return 0;
+    if (!x->swapped && x->api != PL_API_OSMESA)
+        return 0;
+    if (__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED))
+        return 0;
+    return !pl_prim_for_driver(x, p);
+}
+
+/* Appends p's whole quads to the batch. An attribute one of them carries and the other does
+ * not is, for the other's vertices, the current value: the batch's vertices were made with it
+ * and it has not changed since (pl_batch_keep), and p's own ones were given none. */
+static int pl_batch_join(pl_ctx *x, const pl_prim *p)
+{
+    qgl__verts *b = &x->batch.v;
+    size_t n0 = b->n, n = p->v.n & ~(size_t)3;
+    unsigned mask = b->mask | p->v.mask;
+    if (!qgl__verts_reserve(b, n0 + n, mask))
+        return 0;
+    for (int a = 0; a <= QGL__NATTR; a++) {
+        unsigned bit = pl_slot_bit(a);
+        if ((p->v.mask & bit) && !(b->mask & bit))
+            pl_batch_fill(x, b, a, 0, n0);
+        else if ((b->mask & bit) && !(p->v.mask & bit))
+            pl_batch_fill(x, b, a, n0, n0 + n);
+    }
+    qgl__verts_copy_range(b, n0, &p->v, 0, n);
+    b->n = n0 + n;
+    b->mask = mask;
+    return 1;
+}
+
+void pl_end_prim(pl_ctx *x, pl_prim *p)
+{
+    if (!pl_batchable(x, p)) {
+        pl_draw_prim(x, p);
+        return;
+    }
+    pl_prim_backfill(x, p);
+    if (!pl_batch_join(x, p)) {
+        pl_draw_prim(x, p);
+        return;
+    }
+    if (!p->from_arrays)
+        pl_prim_apply_current(x, p);
+    pl_update_slow(x);
+}
+
+void pl_batch_flush(pl_ctx *x)
+{
+    pl_prim *b = &x->batch;
+    size_t n = b->v.n;
+    if (PL_LIKELY(n == 0))
+        return;
+    b->v.n = 0; /* first: nothing below may find it pending */
+    pl_update_slow(x);
+    qgl_context *qgl = pl_ctx_qgl(x);
+    qgl__verts v = b->v;
+    v.n = n;
+    unsigned flags = QGL__DRAW_IMMEDIATE | (n >= PL_BATCH_ARRAYS ? QGL__DRAW_ARRAYS : 0);
+    if (!qgl || qgl__draw_batch(qgl, &v, QGL_QUADS, NULL, flags, NULL, 0) < 0) {
+        b->mode = GL_QUADS;
+        b->v.n = n;
+        memset(b->first, 0, sizeof b->first);
+        size_t mat = 0;
+        pl_replay_range(b, 0, n, &mat);
+        pl_count_passthrough(n / 4);
+        b->v.n = 0;
+    } else if (flags & QGL__DRAW_ARRAYS) {
+        /* GL leaves the current values of arrayed attributes undefined after a draw: they are
+         * put back to the ones the calls left (known: a call that could change them unseen
+         * would have drawn the batch first). */
+        for (int a = 0; a < QGL__NATTR; a++)
+            if ((v.mask & (1u << a)) && (x->cur_known & (1u << a)))
+                qgl__set_current(pl_gl(), a, x->cur[a]);
+    }
+    b->v.mask = 0;
 }

@@ -379,6 +379,8 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
         pl_invalid_operation();
         return;
     }
+    if (x)
+        pl_batch_flush(x);
     if (!x || !pl_cfg.capture || x->compiling || x->native_begin || list == 0 ||
         (mode != GL_COMPILE && mode != GL_COMPILE_AND_EXECUTE) || !(l = calloc(1, sizeof *l))) {
         REAL(glNewList)(list, mode);
@@ -611,6 +613,8 @@ static void pl_compile_call(pl_ctx *x, int kind, GLuint name, uint32_t *names, s
 PL_EXPORT void glCallList(GLuint list)
 {
     pl_ctx *x = pl_tls_ctx;
+    if (x && !x->capturing)
+        pl_batch_flush(x);
     if (!x || x->capturing || x->native_begin || !pl_cfg.capture) {
         REAL(glCallList)(list);
         return;
@@ -645,6 +649,8 @@ PL_EXPORT void glCallLists(GLsizei n, GLenum type, const void *lists)
 {
     pl_ctx *x = pl_tls_ctx;
     uint32_t *names;
+    if (x && !x->capturing)
+        pl_batch_flush(x);
     if (!x || x->capturing || x->native_begin || !pl_cfg.capture || n <= 0 || !lists ||
         (!x->compiling && pl_share_empty(x->share)) || !(names = malloc((size_t)n * sizeof *names))) {
         REAL(glCallLists)(n, type, lists);

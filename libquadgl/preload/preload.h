@@ -174,6 +174,8 @@ struct pl_ctx {
     unsigned cur_known;      /* attributes (and QGL__A_EDGE) whose value above is known */
     pl_prim prim;            /* the primitive being captured */
     pl_prim scratch;         /* vertex-array draws */
+    pl_prim batch;           /* finished GL_QUADS primitives not drawn yet (draw.c) */
+    int swapped;             /* a swap went through us: batches are drawn before every frame ends */
     pl_list *compiling;      /* the display list being compiled, or NULL */
     GLenum compile_mode;
     unsigned seg_dirty;      /* while compiling: what the open segment's calls change */
@@ -199,10 +201,10 @@ void pl_ctx_publish_all(void);              /* every live context's counters int
 
 /* ---- tracking what calls change (track.c) ------------------------------------------------ */
 
-/* Capturing or compiling sends every call through pl_touch's slow path. */
+/* Capturing, compiling or a pending batch sends every call through pl_touch's slow path. */
 static inline void pl_update_slow(pl_ctx *x)
 {
-    x->slow = x->capturing || x->compiling != NULL;
+    x->slow = x->capturing || x->compiling != NULL || x->batch.v.n != 0;
 }
 
 /* The driver's entry points as the GL path's table (resolved once, for replays). */
@@ -212,24 +214,24 @@ struct qgl__gl *pl_gl(void);
 void pl_invalid_operation(void);
 void pl_touch_slow(pl_ctx *x, unsigned mask);
 
-/* Every call that is not an attribute or a vertex: notes what it changes; returns 1 when the
- * call must not reach the driver (it was made inside a captured glBegin/glEnd, where GL
- * forbids it: the driver's error has been raised instead). */
+/* Every call that is not an attribute or a vertex: draws the pending batch, notes what the
+ * call changes; returns 1 when the call must not reach the driver (it was made inside a
+ * captured glBegin/glEnd, where GL forbids it: the driver's error has been raised instead). */
 static inline int pl_touch(unsigned mask)
 {
     pl_ctx *x = pl_tls_ctx;
     if (PL_LIKELY(x == NULL))
         return 0;
-    x->dirty |= mask & PL_D_STATE;
-    if (mask & PL_D_CURRENT)
-        x->cur_known = 0;
     if (PL_UNLIKELY(x->slow)) {
         if (x->capturing) {
             pl_invalid_operation();
             return 1;
         }
-        pl_touch_slow(x, mask);
+        pl_touch_slow(x, mask); /* draws a pending batch in the state it was made in */
     }
+    x->dirty |= mask & PL_D_STATE;
+    if (mask & PL_D_CURRENT)
+        x->cur_known = 0;
     return 0;
 }
 
@@ -263,6 +265,15 @@ void pl_list_add_prim(pl_ctx *x, const pl_prim *p);
 /* While compiling: an attribute call between primitives (slot QGL__NATTR: the edge flag). */
 void pl_list_attrib(pl_ctx *x, int slot, const float v[4]);
 
+/* ---- batches of finished primitives (draw.c) --------------------------------------------- */
+
+/* Draws the pending batch, if any. */
+void pl_batch_flush(pl_ctx *x);
+/* An attribute call outside glBegin/glEnd is about to change slot a's current value (slot
+ * QGL__NATTR: the edge flag), which the pending batch does not carry: its vertices keep the
+ * value they were given. */
+void pl_batch_keep(pl_ctx *x, int a);
+
 /* ---- capture (capture.c, arrays.c) -------------------------------------------------------- */
 
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d);
@@ -288,6 +299,8 @@ static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, fl
         if (x->compile_mode == GL_COMPILE)
             return 1;
     }
+    if (PL_UNLIKELY(x->batch.v.n) && !(x->batch.v.mask & (1u << a)))
+        pl_batch_keep(x, a);
     pl_note_current(x, a, v);
     return 0;
 }
@@ -300,6 +313,7 @@ static inline int pl_hook_texcoord(pl_ctx *x, GLenum unit, float s, float t, flo
     }
     if (unit < PL_TEXUNITS)
         return pl_hook_attrib(x, QGL__AT_TEX0 + (int)unit, s, t, r, q);
+    pl_batch_flush(x);
     if (PL_UNLIKELY(x->compiling))
         pl_list_state(x);
     return 0;
@@ -330,9 +344,13 @@ int pl_arrays_capture(pl_ctx *x, pl_prim *p, GLenum mode, GLint first, GLsizei c
 
 /* ---- drawing (draw.c) ------------------------------------------------------------------------ */
 
-/* Draws a finished primitive in the current state: fills attributes given only from a later
- * vertex from the current values, draws, and leaves the current attributes as GL would. */
+/* Draws a finished primitive in the current state (after the pending batch): fills attributes
+ * given only from a later vertex from the current values, draws, and leaves the current
+ * attributes as GL would. */
 void pl_draw_prim(pl_ctx *x, pl_prim *p);
+/* The same for a primitive just finished outside a list (glEnd, an array draw): it may join
+ * the pending batch instead of being drawn now. */
+void pl_end_prim(pl_ctx *x, pl_prim *p);
 /* Sets the current attributes to the last values given in p (what glEnd leaves behind). */
 void pl_prim_apply_current(pl_ctx *x, const pl_prim *p);
 /* The calls that draw p in the driver (glBegin, attributes, vertices, glEnd, materials). */

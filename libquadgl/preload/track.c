@@ -19,9 +19,11 @@ void pl_invalid_operation(void)
     REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
 }
 
-/* While compiling, every call that is not geometry goes into a segment the driver compiles. */
+/* A pending batch is drawn before the call can change what it looks like; while compiling,
+ * every call that is not geometry goes into a segment the driver compiles. */
 void pl_touch_slow(pl_ctx *x, unsigned mask)
 {
+    pl_batch_flush(x);
     if (x->compiling) {
         pl_list_state(x);
         x->seg_dirty |= mask;

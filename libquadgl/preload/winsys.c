@@ -23,6 +23,14 @@ typedef void (*pl_voidfn)(void);
     if (!real_fn)                                                   \
         real_fn = (type)pl_next_symbol(name);
 
+/* Before the current context changes (or its drawable), its pending batch is drawn. */
+static void pl_leave_current(void)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (x && !x->capturing)
+        pl_batch_flush(x);
+}
+
 /* ---- GLX ----------------------------------------------------------------------------------- */
 
 typedef int (*pl_glx_make_current)(void *, unsigned long, void *);
@@ -39,6 +47,7 @@ PL_EXPORT int glXMakeCurrent(void *dpy, unsigned long drawable, void *ctx)
     PL_NEXT(pl_glx_make_current, "glXMakeCurrent");
     if (!real_fn)
         return 0;
+    pl_leave_current();
     ok = real_fn(dpy, drawable, ctx);
     if (ok)
         pl_ctx_bind(PL_API_GLX, ctx);
@@ -51,6 +60,7 @@ PL_EXPORT int glXMakeContextCurrent(void *dpy, unsigned long draw, unsigned long
     PL_NEXT(pl_glx_make_context_current, "glXMakeContextCurrent");
     if (!real_fn)
         return 0;
+    pl_leave_current();
     ok = real_fn(dpy, draw, read, ctx);
     if (ok)
         pl_ctx_bind(PL_API_GLX, ctx);
@@ -111,14 +121,24 @@ static pl_voidfn pl_getproc_via(const char *real_name, const char *name)
     return fn;
 }
 
-/* A swap ends a frame: the statistics count it. */
 typedef void (*pl_glx_swap)(void *, unsigned long);
+
+/* The frame ends: what waits in a batch is drawn into it first. */
+static void pl_end_frame(void)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (x && !x->capturing) {
+        pl_batch_flush(x);
+        x->swapped = 1;
+    }
+    if (pl_cfg.stats)
+        pl_stats_frame(x);
+}
 
 PL_EXPORT void glXSwapBuffers(void *dpy, unsigned long drawable)
 {
     PL_NEXT(pl_glx_swap, "glXSwapBuffers");
-    if (pl_cfg.stats)
-        pl_stats_frame(pl_tls_ctx);
+    pl_end_frame();
     if (real_fn)
         real_fn(dpy, drawable);
 }
@@ -145,6 +165,7 @@ PL_EXPORT unsigned eglMakeCurrent(void *dpy, void *draw, void *read, void *ctx)
     PL_NEXT(pl_egl_make_current, "eglMakeCurrent");
     if (!real_fn)
         return 0;
+    pl_leave_current();
     ok = real_fn(dpy, draw, read, ctx);
     if (ok)
         pl_ctx_bind(PL_API_EGL, ctx);
@@ -172,8 +193,7 @@ typedef unsigned (*pl_egl_swap)(void *, void *);
 PL_EXPORT unsigned eglSwapBuffers(void *dpy, void *surface)
 {
     PL_NEXT(pl_egl_swap, "eglSwapBuffers");
-    if (pl_cfg.stats)
-        pl_stats_frame(pl_tls_ctx);
+    pl_end_frame();
     return real_fn ? real_fn(dpy, surface) : 0;
 }
 
@@ -196,6 +216,7 @@ PL_EXPORT GLboolean OSMesaMakeCurrent(void *ctx, void *buffer, GLenum type, GLsi
     PL_NEXT(pl_os_make_current, "OSMesaMakeCurrent");
     if (!real_fn)
         return GL_FALSE;
+    pl_leave_current();
     ok = real_fn(ctx, buffer, type, width, height);
     if (ok)
         pl_ctx_bind(PL_API_OSMESA, ctx);

@@ -35,6 +35,7 @@ typedef struct pt_run {
     int native_equal;       /* the picture must equal the native one (affine quads, states
                                the driver draws itself) within 2/255 */
     int min_quads;          /* quads the library must have seen (not in off mode) */
+    char failure[160];      /* what a scene found wrong in the library's counters */
 } pt_run;
 
 typedef struct pt_scene {
@@ -47,6 +48,12 @@ void pt_expect(pt_run *r, const float v[4][2], const float c[4][4], int flat);
 /* Runs the scene named argv[1] (and, with argv[1] == "--native", the child's side). Returns
  * the exit code: 0 pass, 1 fail, 77 skip. */
 int pt_main(int argc, char **argv, const pt_scene *scenes, int nscenes);
+
+/* The preload library's counters (quads, mvc, split, subdiv, passthrough, draws, list
+ * uploads, frames) and its method; 0, or -1 when the library is not loaded (the native run,
+ * QUADGL_METHOD=off or replay: nothing to count). */
+enum { PT_QUADS, PT_MVC, PT_SPLIT, PT_SUBDIV, PT_PASS, PT_DRAWS, PT_UPLOADS, PT_FRAMES, PT_NCOUNTERS };
+int pt_counters(uint64_t out[PT_NCOUNTERS]);
 
 /* For scenes: an orthographic identity view, cleared to opaque black. */
 void pt_begin_frame(void);

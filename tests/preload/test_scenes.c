@@ -7,6 +7,7 @@
  * a primitive of ten million vertices. The quads are in normalized device coordinates under
  * identity matrices, so the reference of a declared quad is its corners' colours
  * interpolated by mean value weights. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -330,6 +331,226 @@ static void scene_lists_states(pt_run *r)
     r->min_quads = 3;
 }
 
+/* ---- batches: many small primitives with changes between them ------------------------------ */
+
+/* Cell k of a 5 x 5 grid of small non-affine quads (corners pulled by varying amounts), all
+ * inside the view volume. */
+static void cell_quad(int k, float v[4][2])
+{
+    static const float pull[4][2] = {{0.02f, 0.01f}, {-0.03f, 0.02f}, {-0.01f, -0.03f}, {0.03f, -0.02f}};
+    float x0 = -0.9f + 0.36f * (float)(k % 5), y0 = -0.9f + 0.36f * (float)(k / 5), d = 0.3f;
+    float corner[4][2] = {{x0, y0}, {x0 + d, y0}, {x0 + d, y0 + d}, {x0, y0 + d}};
+    for (int i = 0; i < 4; i++)
+        for (int a = 0; a < 2; a++)
+            v[i][a] = corner[i][a] + pull[(i + k) % 4][a] * (float)(1 + k % 3);
+}
+
+static void cell_colours(int k, float c[4][4])
+{
+    for (int i = 0; i < 4; i++) {
+        c[i][0] = (float)((k * 7 + i * 3) % 5) / 4.0f;
+        c[i][1] = (float)((k * 5 + i * 2) % 4) / 3.0f;
+        c[i][2] = (float)((k + i * 5) % 6) / 5.0f;
+        c[i][3] = 1;
+    }
+}
+
+/* Each cell its own glBegin/glEnd, with what programs do between such primitives: colours set
+ * outside (an attribute some primitives give and others do not), colours given from a later
+ * vertex on, matrix changes, flat shading, a display list, an array draw, a glGet of the
+ * current colour. Every cell must come out as if drawn alone (the batch is invisible). */
+static void scene_batches(pt_run *r)
+{
+    float v[4][2], c[4][4], cur[4];
+    GLuint list = glGenLists(1);
+    pt_begin_frame();
+    for (int k = 0; k < 25; k++) {
+        int way = k % 8, flat = 0;
+        cell_quad(k, v);
+        cell_colours(k, c);
+        if (way == 1 || way == 5) { /* one colour from outside the primitive */
+            glColor4fv(c[k % 4]);
+            for (int i = 0; i < 4; i++)
+                memcpy(c[i], c[k % 4], sizeof c[i]);
+        } else if (way == 2) { /* the first two vertices take the current colour */
+            glColor4fv(c[0]);
+            memcpy(c[1], c[0], sizeof c[1]);
+        } else if (way == 4) {
+            glShadeModel(GL_FLAT);
+            flat = 4;
+        }
+        if (way == 3) { /* drawn one cell to the left, moved back by the matrix */
+            glPushMatrix();
+            glTranslatef(0.36f, 0.0f, 0.0f);
+        }
+        if (way == 6) { /* from client arrays, between immediate primitives */
+            float moved[4][2];
+            memcpy(moved, v, sizeof moved);
+            glEnableClientState(GL_VERTEX_ARRAY);
+            glEnableClientState(GL_COLOR_ARRAY);
+            glVertexPointer(2, GL_FLOAT, 0, moved);
+            glColorPointer(4, GL_FLOAT, 0, c);
+            glDrawArrays(GL_QUADS, 0, 4);
+            glDisableClientState(GL_VERTEX_ARRAY);
+            glDisableClientState(GL_COLOR_ARRAY);
+        } else if (way == 7) {
+            glNewList(list, GL_COMPILE);
+            glBegin(GL_QUADS);
+            for (int i = 0; i < 4; i++) {
+                glColor4fv(c[i]);
+                glVertex2fv(v[i]);
+            }
+            glEnd();
+            glEndList();
+            glCallList(list);
+        } else {
+            glBegin(GL_QUADS);
+            for (int i = 0; i < 4; i++) {
+                if (way != 1 && way != 5 && (way != 2 || i >= 2))
+                    glColor4fv(c[i]);
+                glVertex2f(v[i][0] - (way == 3 ? 0.36f : 0.0f), v[i][1]);
+            }
+            glEnd();
+        }
+        if (way == 3)
+            glPopMatrix();
+        if (way == 4)
+            glShadeModel(GL_SMOOTH);
+        if (k == 12) { /* the current colour after glEnd is the primitive's last */
+            glGetFloatv(GL_CURRENT_COLOR, cur);
+            for (int i = 0; i < 4; i++)
+                pt_value(r, (uint32_t)(cur[i] * 1000.0f + 0.5f));
+        }
+        pt_expect(r, v, c, flat);
+    }
+    glDeleteLists(list, 1);
+    r->checks_reference = 1;
+    r->min_quads = 25;
+}
+
+static void quad_from(const float v[4][2], const float c[4][4], float dy)
+{
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(c[i]);
+        glVertex2f(v[i][0], v[i][1] + dy);
+    }
+    glEnd();
+}
+
+/* Draws since the counters were read into before (0 when nothing is counted). */
+static uint64_t draws_since(const uint64_t before[PT_NCOUNTERS])
+{
+    uint64_t now[PT_NCOUNTERS];
+    glFinish();
+    return pt_counters(now) == 0 ? now[PT_DRAWS] - before[PT_DRAWS] : 0;
+}
+
+/* Eighteen single-quad primitives in a row must cost the library a draw or two, not one each;
+ * a display list of seven such primitives, called three times under different matrices,
+ * uploads its vertices once and takes a draw or two a call. */
+static void scene_batch_draws(pt_run *r)
+{
+    uint64_t before[PT_NCOUNTERS], uploads = 0;
+    float v[4][2], c[4][4];
+    GLuint list = glGenLists(1);
+    pt_begin_frame();
+    pt_counters(before);
+    for (int k = 0; k < 18; k++) {
+        cell_quad(k, v);
+        cell_colours(k, c);
+        quad_from(v, c, 0);
+        pt_expect(r, v, c, 0);
+    }
+    uint64_t d = draws_since(before);
+    if (d > 2)
+        snprintf(r->failure, sizeof r->failure, "18 primitives in a row took %llu draws", (unsigned long long)d);
+    glNewList(list, GL_COMPILE);
+    for (int k = 18; k < 25; k++) {
+        cell_quad(k, v);
+        cell_colours(k, c);
+        quad_from(v, c, 0);
+    }
+    glEndList();
+    for (int call = 0; call < 3; call++) {
+        float dy = -0.54f * (float)call;
+        pt_counters(before);
+        glPushMatrix();
+        glTranslatef(0.0f, dy, 0.0f);
+        glCallList(list);
+        glPopMatrix();
+        d = draws_since(before);
+        if (d > 2 && !r->failure[0])
+            snprintf(r->failure, sizeof r->failure, "a list of 7 primitives took %llu draws", (unsigned long long)d);
+        if (call > 0 && before[PT_UPLOADS] != uploads && !r->failure[0])
+            snprintf(r->failure, sizeof r->failure, "the list was uploaded again at call %d", call);
+        pt_counters(before);
+        uploads = before[PT_UPLOADS];
+        for (int k = 18; k < 25; k++) {
+            cell_quad(k, v);
+            cell_colours(k, c);
+            for (int i = 0; i < 4; i++)
+                v[i][1] += dy;
+            pt_expect(r, v, c, 0);
+        }
+    }
+    glDeleteLists(list, 1);
+    r->checks_reference = 1;
+    r->min_quads = 18 + 3 * 7;
+}
+
+/* Small planar quads with affine colours (the split is exact, so every method must give the
+ * driver's pixels) and state changes between them that a batch must not cross: blending,
+ * polygon mode, texturing, depth test, line width, the clear colour and a clear. */
+static void scene_batch_states(pt_run *r)
+{
+    static const GLubyte tex[2][2][4] = {{{255, 0, 0, 255}, {0, 255, 0, 255}}, {{0, 0, 255, 255}, {255, 255, 0, 255}}};
+    GLuint name;
+    float v[4][2];
+    pt_begin_frame();
+    glGenTextures(1, &name);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    for (int k = 0; k < 25; k++) {
+        int way = k % 6;
+        float x0 = -0.96f + 0.38f * (float)(k % 5), y0 = -0.96f + 0.38f * (float)(k / 5), d = 0.3f;
+        v[0][0] = v[3][0] = x0, v[1][0] = v[2][0] = x0 + d + 0.04f * (float)(k % 3);
+        v[0][1] = v[1][1] = y0, v[2][1] = v[3][1] = y0 + d;
+        if (way == 1)
+            glEnable(GL_BLEND);
+        else if (way == 2)
+            glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        else if (way == 3)
+            glEnable(GL_TEXTURE_2D);
+        else if (way == 4)
+            glLineWidth(3.0f);
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++) {
+            glColor4f(0.2f + 0.7f * (float)(i == 1 || i == 2), 0.3f + 0.5f * (float)(i >= 2), 0.6f, 0.5f);
+            glTexCoord2f((float)(i == 1 || i == 2), (float)(i >= 2));
+            glVertex2fv(v[i]);
+        }
+        glEnd();
+        glDisable(GL_BLEND);
+        glDisable(GL_TEXTURE_2D);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glLineWidth(1.0f);
+        if (k == 20) { /* a clear between batches wipes what came before it */
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, 0, 32, 32);
+            glClearColor(0.1f, 0.2f, 0.3f, 1);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glDisable(GL_SCISSOR_TEST);
+        }
+    }
+    glDeleteTextures(1, &name);
+    r->native_equal = 1;
+    r->min_quads = 25;
+}
+
 /* ---- fixed-function states ------------------------------------------------------------------------ */
 
 static void scene_flat(pt_run *r)
@@ -589,6 +810,9 @@ static const pt_scene scenes[] = {
     {"eval", scene_eval},
     {"errors", scene_errors},
     {"big", scene_big},
+    {"batches", scene_batches},
+    {"batch_states", scene_batch_states},
+    {"batch_draws", scene_batch_draws},
 };
 
 int main(int argc, char **argv)

@@ -66,7 +66,7 @@ int main(void)
 {
     pthread_t t[2];
     void *res[2];
-    uint64_t st[5] = {0};
+    uint64_t st[8] = {0};
     void (*stats)(uint64_t *) = (void (*)(uint64_t *))dlsym(RTLD_DEFAULT, "qgl_preload_stats");
     if (!stats) {
         fprintf(stderr, "threads: libquadgl-preload.so is not preloaded\n");
