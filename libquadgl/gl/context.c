@@ -170,6 +170,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     }
     qgl__verts_free(&ctx->cap);
     qgl__verts_free(&ctx->sub);
+    qgl__verts_free(&ctx->pvmat);
     qgl__verts_free(&ctx->pend);
     free(ctx->multi_first);
     free(ctx->multi_count);

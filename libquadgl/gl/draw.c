@@ -1053,6 +1053,51 @@ static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
                              ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
 }
 
+/* The material components per vertex, in QGL__MATERIAL_FLOATS' order. */
+static const GLenum material_pnames[4] = {GL_AMBIENT, GL_DIFFUSE, GL_SPECULAR, GL_EMISSION};
+
+static void material_change(float cur[QGL__MATERIAL_FLOATS], const qgl__change *c)
+{
+    for (int f = 0; f < 2; f++) {
+        if ((f == 0 && c->face == GL_BACK) || (f == 1 && c->face == GL_FRONT))
+            continue;
+        for (int k = 0; k < 4; k++)
+            if (c->pname == material_pnames[k] || (c->pname == GL_AMBIENT_AND_DIFFUSE && k < 2))
+                memcpy(cur + 16 * f + 4 * k, c->v, 4 * sizeof(float));
+        if (c->pname == GL_SHININESS)
+            cur[32 + f] = c->v[0];
+    }
+}
+
+/* The glMaterial calls of a lit batch as per-vertex materials (the driver's material before
+ * the batch, then each change from its vertex on), so the shader path lights every corner
+ * with its own material in one draw, as fixed function does per vertex, instead of one draw
+ * per change. 0 without memory (the runs are then cut at each change). */
+static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl__change *chg, size_t nchg,
+                                qgl__verts *out)
+{
+    qgl__verts *m = &ctx->pvmat;
+    float cur[QGL__MATERIAL_FLOATS] = {0};
+    if (!qgl__verts_reserve(m, v->n, QGL__A_MATERIAL))
+        return 0;
+    for (int f = 0; f < 2; f++) {
+        GLenum face = f ? GL_BACK : GL_FRONT;
+        for (int k = 0; k < 4; k++)
+            ctx->gl.GetMaterialfv(face, material_pnames[k], cur + 16 * f + 4 * k);
+        ctx->gl.GetMaterialfv(face, GL_SHININESS, cur + 32 + f);
+    }
+    size_t c = 0;
+    for (size_t i = 0; i < v->n; i++) {
+        for (; c < nchg && chg[c].vertex <= i; c++)
+            material_change(cur, &chg[c]);
+        memcpy(m->mat + QGL__MATERIAL_FLOATS * i, cur, sizeof cur);
+    }
+    *out = *v;
+    out->mat = m->mat;
+    out->mask |= QGL__A_MATERIAL;
+    return 1;
+}
+
 int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
                     const qgl__change *chg, size_t nchg)
 {
@@ -1064,6 +1109,13 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     }
     qgl__state st;
     qgl__query_state(ctx, &st);
+    qgl__verts with_mat;
+    int pv_changes = 0;
+    if (nchg && (st.ffp.flags & QGL__KF_LIGHTING) && !(v->mask & QGL__A_MATERIAL) && ctx->has_vao &&
+        ctx->shader_level != 120 && per_vertex_materials(ctx, v, chg, nchg, &with_mat)) {
+        v = &with_mat;
+        pv_changes = 1;
+    }
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
         st.ffp.flags |= QGL__KF_MATERIAL;
         st.pv_material = st.nonaffine = 1;
@@ -1090,7 +1142,8 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     for (size_t q0 = 0; q0 < nq;) {
         unsigned char p = ctx->path[q0];
         size_t q1 = q0 + 1, limit = nq;
-        if (!replayed(ctx, p, flags)) { /* its quads share the material in force at the first */
+        if (!replayed(ctx, p, flags) && !(pv_changes && (p & 15) == QGL__P_MVC)) {
+            /* its quads share the material in force at the first */
             while (ctx->chg_next < nchg && change_quad(topo, chg[ctx->chg_next].vertex) <= q0)
                 apply_changes(ctx, chg[ctx->chg_next].vertex + 1);
             if (ctx->chg_next < nchg)

@@ -462,6 +462,7 @@ struct qgl_context {
     GLuint vao;               /* ours: its arrays point into the stream buffer */
     qgl__stream stream;
     qgl__verts sub;           /* fallback output */
+    qgl__verts pvmat;         /* draw.c: a batch's glMaterial calls as per-vertex materials */
     double *clip;             /* 4 per vertex */
     unsigned char *path;      /* per quad */
     size_t idx_offset;        /* the batch's strip indices in the stream buffer */

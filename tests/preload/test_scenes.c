@@ -596,6 +596,38 @@ static void scene_flat_lit(pt_run *r)
     r->min_quads = 3;
 }
 
+/* glMaterial per vertex inside glBegin/glEnd (as programs colour a lit surface without colour
+ * material): fixed function lights each vertex with the material given before it, so the
+ * picture is the mean value interpolation of the corners' lit colours, whatever path draws
+ * each quad. A directional light along the normal lights a vertex with 0.2 (the scene's
+ * ambient) + 1 (the light's diffuse) times its material. */
+static void scene_materials(pt_run *r)
+{
+    static const float dir[4] = {0, 0, 1, 0};
+    float lit[4][4];
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glNormal3f(0, 0, 1);
+    for (int q = 0; q < 3; q++) {
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++) {
+            float m[4] = {0.75f * C[q][i][0], 0.75f * C[q][i][1], 0.75f * C[q][i][2], 1};
+            glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, m);
+            glVertex2fv(Q[q][i]);
+            for (int k = 0; k < 3; k++)
+                lit[i][k] = 1.2f * m[k];
+            lit[i][3] = 1;
+        }
+        glEnd();
+        pt_expect(r, Q[q], lit, 0);
+    }
+    glDisable(GL_LIGHTING);
+    r->checks_reference = 1;
+    r->min_quads = 3;
+}
+
 static void scene_polygon_line(pt_run *r)
 {
     pt_begin_frame();
@@ -813,6 +845,7 @@ static const pt_scene scenes[] = {
     {"batches", scene_batches},
     {"batch_states", scene_batch_states},
     {"batch_draws", scene_batch_draws},
+    {"materials", scene_materials},
 };
 
 int main(int argc, char **argv)
