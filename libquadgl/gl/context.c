@@ -171,6 +171,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     qgl__verts_free(&ctx->cap);
     qgl__verts_free(&ctx->sub);
     qgl__verts_free(&ctx->pvmat);
+    qgl__verts_free(&ctx->unrolled);
+    free(ctx->unrolled_facts);
     qgl__verts_free(&ctx->pend);
     free(ctx->multi_first);
     free(ctx->multi_count);
@@ -274,6 +276,14 @@ void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t 
     if (m & QGL__A_MATERIAL)
         memcpy(d->mat + QGL__MATERIAL_FLOATS * i, s->mat + QGL__MATERIAL_FLOATS * j,
                QGL__MATERIAL_FLOATS * n * sizeof(float));
+}
+
+void qgl__verts_unroll(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t nq, int shift)
+{
+    static const int strip[4] = {0, 1, 3, 2};
+    for (size_t q = 0; q < nq; q++)
+        for (int c = 0; c < 4; c++)
+            qgl__verts_copy(d, i + 4 * q + (size_t)c, s, j + 2 * q + (size_t)strip[(c + shift) & 3]);
 }
 
 void qgl__verts_free(qgl__verts *v)

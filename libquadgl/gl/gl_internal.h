@@ -293,6 +293,11 @@ void qgl__verts_free(qgl__verts *v);
 void qgl__verts_copy(qgl__verts *d, size_t i, const qgl__verts *s, size_t j);
 /* Vertices j .. j + n - 1 of s to i .. i + n - 1 of d (distinct arrays). */
 void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t n);
+/* The nq quads of the strip at vertex j of s as GL_QUADS at vertex i of d (4 nq vertices of
+ * room): corner c of each takes the strip quad's corner (c + shift) & 3, in the strip's corner
+ * order v2k, v2k+1, v2k+3, v2k+2 (shift 0 keeps the diagonal the driver splits a strip quad
+ * on, shift 3 puts the provoking vertex v2k+3 last, where GL_QUADS has it). */
+void qgl__verts_unroll(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t nq, int shift);
 
 /* ---- the fixed-function state a generated program reproduces (its key) ------------------ */
 
@@ -463,6 +468,9 @@ struct qgl_context {
     qgl__stream stream;
     qgl__verts sub;           /* fallback output */
     qgl__verts pvmat;         /* draw.c: a batch's glMaterial calls as per-vertex materials */
+    qgl__verts unrolled;      /* mesh.c: a run of quad primitives as one GL_QUADS batch */
+    uint16_t *unrolled_facts;
+    size_t unrolled_facts_cap;
     double *clip;             /* 4 per vertex */
     unsigned char *path;      /* per quad */
     size_t idx_offset;        /* the batch's strip indices in the stream buffer */

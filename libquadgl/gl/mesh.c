@@ -269,6 +269,47 @@ static int prim_way(qgl_context *ctx, const qgl__state *st, const qgl__mesh *m, 
     return 0;
 }
 
+/* Whether primitive i may join a group the planner draws as one batch. */
+static int groups(const qgl__mesh *m, size_t i, int way)
+{
+    return way == 1 && !m->prim[i].nchg;
+}
+
+/* Primitives [i0, i1) (quads the planner draws, no materials inside) as one GL_QUADS batch with
+ * their facts: one plan, one upload and a draw per run of one path, where a primitive at a
+ * time took a draw each (a lathed chess piece is hundreds of strips). A strip's quads keep the
+ * diagonal the driver splits them on, or under flat shading their provoking vertex. 0 without
+ * memory. */
+static int draw_group(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, size_t i0, size_t i1)
+{
+    size_t nq = 0, n = 0;
+    for (size_t i = i0; i < i1; i++)
+        nq += qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+    qgl__verts *u = &ctx->unrolled;
+    if (!qgl__verts_reserve(u, 4 * nq, m->v.mask & ~(unsigned)QGL__A_MATERIAL) ||
+        !grow((void **)&ctx->unrolled_facts, &ctx->unrolled_facts_cap, nq, sizeof *ctx->unrolled_facts))
+        return 0;
+    u->mask = m->v.mask & ~(unsigned)QGL__A_MATERIAL;
+    int shift = st->shade_model == GL_FLAT && qgl__flat_corner(ctx, st, QGL_QUAD_STRIP) == 2 ? 3 : 0;
+    unsigned all = 0xffffu;
+    for (size_t i = i0; i < i1; i++) {
+        const qgl__mesh_prim *p = &m->prim[i];
+        size_t k = qgl__nquads(topology(p->mode), p->count);
+        qgl__verts w = view(&m->v, p->first, p->count);
+        if (p->mode == GL_QUADS)
+            qgl__verts_copy_range(u, n, &w, 0, 4 * k);
+        else
+            qgl__verts_unroll(u, n, &w, 0, k, shift);
+        memcpy(ctx->unrolled_facts + n / 4, m->facts + p->facts0, k * sizeof *m->facts);
+        all &= m->pfacts[i];
+        n += 4 * k;
+    }
+    u->n = n;
+    qgl__facts f = {ctx->unrolled_facts, (uint16_t)all, NULL, NULL};
+    qgl__draw_batch(ctx, u, QGL_QUADS, &f, QGL__DRAW_IMMEDIATE | QGL__DRAW_ARRAYS, NULL, 0);
+    return 1;
+}
+
 int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
 {
     if (!ctx->has_vao || m->generic || !m->nprim)
@@ -300,6 +341,17 @@ int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
         run = i + 1;
         if (way == 3)
             break;
+        size_t j = i + 1;
+        while (j < m->nprim && groups(m, i, way) && groups(m, j, prim_way(ctx, &st, m, j, &path)))
+            j++;
+        if (j > i + 1 && draw_group(ctx, &st, m, i, j)) {
+            for (size_t k = i; k < j; k++)
+                quads += (int)qgl__nquads(topology(m->prim[k].mode), m->prim[k].count);
+            run = j;
+            i = j - 1;
+            pointed = 0;
+            continue;
+        }
         const qgl__mesh_prim *p = &m->prim[i];
         qgl__verts w = view(&m->v, p->first, p->count);
         qgl__facts f = {m->facts + p->facts0, m->pfacts[i], NULL, NULL};

@@ -57,10 +57,7 @@ static int append(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, size
     if (topo == QGL_QUADS) {
         qgl__verts_copy_range(p, n0, v, 0, 4 * nq);
     } else {
-        int shift = qgl__flat_corner(ctx, NULL, topo) == 2 ? 3 : 0;
-        for (size_t q = 0; q < nq; q++)
-            for (int c = 0; c < 4; c++)
-                qgl__verts_copy(p, n0 + 4 * q + (size_t)c, v, qgl__corner(topo, q, (c + shift) & 3));
+        qgl__verts_unroll(p, n0, v, 0, nq, qgl__flat_corner(ctx, NULL, topo) == 2 ? 3 : 0);
     }
     p->n = n0 + 4 * nq;
     fill_current(ctx, p, n0, p->n, p->mask & ~v->mask);

@@ -185,34 +185,47 @@ void pl_batch_keep(pl_ctx *x, int a)
  * a pointer we never handed out would show frames without their last quads). */
 static int pl_batchable(pl_ctx *x, const pl_prim *p)
 {
-    if (p->mode != GL_QUADS || p->nmat || p->generic_given || p->lost || p->v.n < 4 ||
-        p->v.n + x->batch.v.n > PL_BATCH_MAX)
+    size_t nq = pl_prim_quads(p);
+    /* method split promises the driver's own drawing, strips included */
+    if ((p->mode == GL_QUAD_STRIP && pl_cfg.method == QGL_METHOD_SPLIT) || p->nmat || p->generic_given ||
+        p->lost || !nq || x->batch.v.n + 4 * nq > PL_BATCH_MAX)
         return 0;
     if (!x->swapped && x->api != PL_API_OSMESA)
         return 0;
-    if (__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED))
+    if (__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED) || pl_prim_for_driver(x, p))
         return 0;
-    return !pl_prim_for_driver(x, p);
+    if (p->mode == GL_QUADS)
+        return 1;
+    /* strips are unrolled: not where the driver draws them as they are (outlines, feedback) */
+    const qgl__state *st = qgl__state_now(pl_ctx_qgl(x));
+    return st->render_mode == GL_RENDER && st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL;
 }
 
-/* Appends p's whole quads to the batch. An attribute one of them carries and the other does
- * not is, for the other's vertices, the current value: the batch's vertices were made with it
- * and it has not changed since (pl_batch_keep), and p's own ones were given none. */
+/* Appends p's whole quads to the batch (a strip's unrolled as the GL path draws a list's:
+ * qgl__verts_unroll). An attribute one of them carries and the other does not is, for the
+ * other's vertices, the current value: the batch's vertices were made with it and it has not
+ * changed since (pl_batch_keep), and p's own ones were given none. */
 static int pl_batch_join(pl_ctx *x, const pl_prim *p)
 {
     qgl__verts *b = &x->batch.v;
-    size_t n0 = b->n, n = p->v.n & ~(size_t)3;
+    size_t n0 = b->n, nq = pl_prim_quads(p), n = 4 * nq;
     unsigned mask = b->mask | p->v.mask;
     if (!qgl__verts_reserve(b, n0 + n, mask))
         return 0;
-    for (int a = 0; a <= QGL__NATTR; a++) {
-        unsigned bit = pl_slot_bit(a);
-        if ((p->v.mask & bit) && !(b->mask & bit))
+    for (int a = 0; a <= QGL__NATTR; a++)
+        if ((p->v.mask & pl_slot_bit(a)) && !(b->mask & pl_slot_bit(a)))
             pl_batch_fill(x, b, a, 0, n0);
-        else if ((b->mask & bit) && !(p->v.mask & bit))
-            pl_batch_fill(x, b, a, n0, n0 + n);
+    if (p->mode == GL_QUADS) {
+        qgl__verts_copy_range(b, n0, &p->v, 0, n);
+    } else {
+        qgl_context *qgl = pl_ctx_qgl(x);
+        const qgl__state *st = qgl__state_now(qgl);
+        int flat = st->shade_model == GL_FLAT && qgl__flat_corner(qgl, st, QGL_QUAD_STRIP) == 2;
+        qgl__verts_unroll(b, n0, &p->v, 0, nq, flat ? 3 : 0);
     }
-    qgl__verts_copy_range(b, n0, &p->v, 0, n);
+    for (int a = 0; a <= QGL__NATTR; a++)
+        if ((b->mask & pl_slot_bit(a)) && !(p->v.mask & pl_slot_bit(a)))
+            pl_batch_fill(x, b, a, n0, n0 + n);
     b->n = n0 + n;
     b->mask = mask;
     return 1;

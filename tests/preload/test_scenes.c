@@ -499,6 +499,80 @@ static void scene_batch_draws(pt_run *r)
     r->min_quads = 18 + 3 * 7;
 }
 
+/* Strip k of three: two non-affine quads in a column of the 64 x 64 window. */
+static void list_strip(int k, float dx, float out[6][2])
+{
+    for (int i = 0; i < 6; i++) {
+        out[i][0] = -0.9f + 0.6f * (float)k + (i & 1 ? 0.45f : 0.0f) + (i == 2 ? 0.1f : 0.0f) + dx;
+        out[i][1] = -0.9f + 0.4f * (float)(i / 2) + (i == 3 ? 0.15f : 0.0f);
+    }
+}
+
+/* Three strips, through a display list and then in immediate mode, drawn smooth and then flat
+ * (the strips' quads are planned together, unrolled: their colours must still be the strip's,
+ * and under flat shading the provoking vertex's), in a draw or two each time. */
+static void scene_list_strips(pt_run *r)
+{
+    static const int order[4] = {0, 1, 3, 2};
+    uint64_t before[PT_NCOUNTERS];
+    float st[6][2], v[4][2], c[4][4];
+    GLuint list = glGenLists(1);
+    pt_begin_frame();
+    glNewList(list, GL_COMPILE);
+    for (int k = 0; k < 3; k++) {
+        list_strip(k, 0, st);
+        glBegin(GL_QUAD_STRIP);
+        for (int i = 0; i < 6; i++) {
+            glColor4fv(SC[(i + k) % 6]);
+            glVertex2fv(st[i]);
+        }
+        glEnd();
+    }
+    glEndList();
+    for (int pass = 0; pass < 4; pass++) {
+        int flat = pass & 1;
+        glShadeModel(flat ? GL_FLAT : GL_SMOOTH);
+        glPushMatrix();
+        glTranslatef(0.0f, flat ? 1.05f : 0.0f, 0.0f);
+        pt_counters(before);
+        if (pass < 2) {
+            glCallList(list);
+        } else {
+            for (int k = 0; k < 3; k++) {
+                list_strip(k, 0, st);
+                glBegin(GL_QUAD_STRIP);
+                for (int i = 0; i < 6; i++) {
+                    glColor4fv(SC[(i + k + 1) % 6]);
+                    glVertex2fv(st[i]);
+                }
+                glEnd();
+            }
+        }
+        glPopMatrix();
+        uint64_t d = draws_since(before);
+        const char *method = getenv("QUADGL_METHOD");
+        int replayed = pass >= 2 && method && !strcmp(method, "split"); /* the driver's own strips */
+        if (d > 2 && !replayed && !r->failure[0])
+            snprintf(r->failure, sizeof r->failure, "3 strips (%s) took %llu draws", pass < 2 ? "a list" : "immediate",
+                     (unsigned long long)d);
+        for (int k = 0; k < 3; k++) {
+            list_strip(k, 0, st);
+            for (int q = 0; q < 2; q++) {
+                for (int i = 0; i < 4; i++) {
+                    int j = 2 * q + order[i];
+                    v[i][0] = st[j][0], v[i][1] = st[j][1] + (flat ? 1.05f : 0.0f);
+                    memcpy(c[i], SC[(j + k + (pass >= 2)) % 6], sizeof c[i]);
+                }
+                pt_expect(r, v, c, flat ? 3 : 0);
+            }
+        }
+    }
+    glShadeModel(GL_SMOOTH);
+    glDeleteLists(list, 1);
+    r->checks_reference = 1;
+    r->min_quads = 24;
+}
+
 /* Small planar quads with affine colours (the split is exact, so every method must give the
  * driver's pixels) and state changes between them that a batch must not cross: blending,
  * polygon mode, texturing, depth test, line width, the clear colour and a clear. */
@@ -846,6 +920,7 @@ static const pt_scene scenes[] = {
     {"batch_states", scene_batch_states},
     {"batch_draws", scene_batch_draws},
     {"materials", scene_materials},
+    {"list_strips", scene_list_strips},
 };
 
 int main(int argc, char **argv)
