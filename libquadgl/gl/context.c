@@ -172,9 +172,13 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     qgl__verts_free(&ctx->sub);
     qgl__verts_free(&ctx->pvmat);
     qgl__verts_free(&ctx->unrolled);
+    qgl__verts_free(&ctx->grouped);
+    free(ctx->grouped_clip);
     free(ctx->unrolled_facts);
     qgl__verts_free(&ctx->pend);
     free(ctx->multi_first);
+    free(ctx->multi_offset);
+    free(ctx->ways);
     free(ctx->multi_count);
     free(ctx->clip);
     free(ctx->path);

@@ -18,6 +18,7 @@
  * equal depths make order visible). All vertices are uploaded once into our own buffer,
  * behind our own vertex array object; afterwards the program, the bindings, the client
  * active texture and the current values of every attribute we streamed are restored. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -143,7 +144,7 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
         for (int k = 0; k < 3; k++)
             p[c][k] = q[k] / q[3];
     }
-    *planar = qgl_is_planar(p, 1e-6);
+    *planar = qgl__planar(p);
     if (!*planar || st->nonaffine)
         return 0;
     if (invisible && split_invisible(ctx, st, v, idx, clip))
@@ -204,6 +205,23 @@ static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p
     return qgl_split_is_exact(p, ind, ngroups, 1e-5);
 }
 
+int qgl__planar(const double p[4][3])
+{
+    double big = 0, lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = hi[k] = p[0][k];
+        for (int c = 0; c < 4; c++) {
+            big = fmax(big, fabs(p[c][k]));
+            lo[k] = fmin(lo[k], p[c][k]);
+            hi[k] = fmax(hi[k], p[c][k]);
+        }
+    }
+    double extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    /* each coordinate is off by up to half an ulp; the diagonals' distance by a few of them */
+    double rounding = extent > 0 ? 8 * FLT_EPSILON * big / extent : 0;
+    return qgl_is_planar(p, fmax(1e-6, rounding));
+}
+
 /* Object-space corners (w > 0 each); 0 when a corner is at or behind infinity. */
 static int object_corners(const qgl__verts *v, const size_t idx[4], double p[4][3])
 {
@@ -235,7 +253,7 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q)
     double p[4][3];
     for (int c = 0; c < 4; c++)
         idx[c] = qgl__corner(topo, q, c);
-    if (!object_corners(v, idx, p) || !qgl_is_planar(p, 1e-6))
+    if (!object_corners(v, idx, p) || !qgl__planar(p))
         return 0;
     uint16_t f = QGL__F_PLANAR;
     unsigned m = v->mask;
@@ -584,7 +602,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     int planar = 0;
     if (ctx->method == QGL_METHOD_SUBDIV) {
         double p[4][3];
-        planar = object_corners(v, idx, p) && qgl_is_planar(p, 1e-6);
+        planar = object_corners(v, idx, p) && qgl__planar(p);
         return !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q) ? QGL__P_GRID : QGL__P_SUBDIV;
     }
     if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
@@ -970,6 +988,54 @@ static void merge_runs(unsigned char *path, size_t nq)
     }
 }
 
+/* Whether the quad's screen corners (every w > 0) turn one way: the depth-writing form of the
+ * view-invariant weights serves a planar quad then (its patch is the quad; a concave one's
+ * folds over). */
+static int screen_convex(const qgl_context *ctx, qgl_topology topo, size_t q)
+{
+    double x[4], y[4];
+    int pos = 0, neg = 0;
+    for (int c = 0; c < 4; c++) {
+        const double *h = ctx->clip + 4 * qgl__corner(topo, q, c);
+        x[c] = h[0] / h[3], y[c] = h[1] / h[3];
+    }
+    for (int c = 0; c < 4; c++) {
+        int d = (c + 1) & 3, e = (c + 2) & 3;
+        double cross = (x[d] - x[c]) * (y[e] - y[d]) - (y[d] - y[c]) * (x[e] - x[d]);
+        pos += cross > 0, neg += cross < 0;
+    }
+    return pos == 4 || neg == 4;
+}
+
+/* Shader-path quads whose forms alternate (a lathed surface's planar and non-planar quads,
+ * clipped and unclipped ones) are drawn by the one program that serves them all, one draw
+ * instead of one per change: the clipped form (per-fragment normalisation) serves any quad,
+ * the depth-writing one any planar quad (its weights are the plane's; in the view-invariant
+ * form convex ones only). Quads with a corner behind the eye keep their own. */
+static void merge_forms(qgl_context *ctx, qgl_topology topo, unsigned char *path, size_t nq)
+{
+    const unsigned char forms = QGL__P_DEPTH | QGL__P_CLIPPED;
+    for (size_t a = 0; a < nq;) {
+        if ((path[a] & 15) != QGL__P_MVC || (path[a] & QGL__P_EXTERNAL)) {
+            a++;
+            continue;
+        }
+        size_t b = a;
+        unsigned char all = 0, any_change = 0;
+        while (b < nq && (path[b] & 15) == QGL__P_MVC && !(path[b] & QGL__P_EXTERNAL)) {
+            any_change |= b > a && path[b] != path[b - 1];
+            all |= path[b++] & forms;
+        }
+        int ok = any_change;
+        for (size_t q = a; q < b && ok && (all & QGL__P_DEPTH) && ctx->method != QGL_METHOD_MVC; q++)
+            ok = (path[q] & QGL__P_DEPTH) || screen_convex(ctx, topo, q);
+        if (ok)
+            for (size_t q = a; q < b; q++)
+                path[q] = (unsigned char)((path[q] & ~forms) | all);
+        a = b;
+    }
+}
+
 static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
                 const qgl__facts *facts)
 {
@@ -990,6 +1056,8 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
         ctx->path[q] = p;
     }
     merge_runs(ctx->path, nq);
+    if (ctx->shader_level != 120)
+        merge_forms(ctx, topo, ctx->path, nq);
     return 1;
 }
 
@@ -1051,6 +1119,41 @@ static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
 {
     return !ctx->has_vao || ((flags & (QGL__DRAW_IMMEDIATE | QGL__DRAW_ARRAYS)) == QGL__DRAW_IMMEDIATE &&
                              ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
+}
+
+/* Where drawing order cannot show (st->order_free), a batch's quads are drawn grouped by path,
+ * stably: one draw per path instead of one per change of path (a lathed surface alternates
+ * planar and non-planar quads, a sphere's clipped and unclipped ones). The vertices, their
+ * clip positions and the paths are permuted; 0 when that saves no draw or without memory. */
+static int group_by_path(qgl_context *ctx, const qgl__verts *v, size_t nq)
+{
+    size_t runs = 1, kinds = 0, count[256] = {0}, start[256], at = 0;
+    unsigned char *path = ctx->path;
+    for (size_t q = 0; q < nq; q++) {
+        runs += q > 0 && path[q] != path[q - 1];
+        kinds += count[path[q]]++ == 0;
+    }
+    qgl__verts *g = &ctx->grouped;
+    if (runs <= kinds || !qgl__verts_reserve(g, 4 * nq, v->mask) ||
+        !ensure((void **)&ctx->grouped_clip, &ctx->grouped_clip_cap, 16 * nq, sizeof(double)))
+        return 0;
+    for (int p = 0; p < 256; p++)
+        start[p] = at, at += count[p];
+    for (size_t q = 0; q < nq; q++) {
+        size_t d = start[path[q]]++;
+        qgl__verts_copy_range(g, 4 * d, v, 4 * q, 4);
+        memcpy(ctx->grouped_clip + 16 * d, ctx->clip + 16 * q, 16 * sizeof(double));
+    }
+    at = 0;
+    for (int p = 0; p < 256; p++)
+        memset(path + at, p, count[p]), at += count[p];
+    double *c = ctx->clip;
+    size_t cap = ctx->clip_cap;
+    ctx->clip = ctx->grouped_clip, ctx->clip_cap = ctx->grouped_clip_cap;
+    ctx->grouped_clip = c, ctx->grouped_clip_cap = cap;
+    g->n = 4 * nq;
+    g->mask = v->mask;
+    return 1;
 }
 
 /* The material components per vertex, in QGL__MATERIAL_FLOATS' order. */
@@ -1125,6 +1228,8 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
         return (int)nq;
     if (!plan(ctx, &st, v, topo, nq, facts))
         return -1;
+    if (st.order_free && topo == QGL_QUADS && !nchg && group_by_path(ctx, v, nq))
+        v = &ctx->grouped;
     ctx->chg = chg, ctx->nchg = nchg, ctx->chg_next = 0, ctx->chg_verts = v;
     ctx->stats.quads += nq;
     int arrays = 0;

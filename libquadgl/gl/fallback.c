@@ -431,7 +431,7 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
     if (ctx->method == QGL_METHOD_MVC || !finite_obj || qgl_plane_frame(pos, &f.pl) != 0)
         return subdivide_screen(ctx, &f, v, idx, flat, out);
     double diam = front ? diameter((const double(*)[2])P) : hypot(st->viewport[2], st->viewport[3]);
-    if (!front || qgl_is_planar(pos, 1e-6))
+    if (!front || qgl__planar(pos))
         return subdivide_plane(ctx, &f, diam, v, idx, flat, out);
     f.at = patch_at;
     return subdivide_patch(ctx, &f, diam, v, idx, flat, out);

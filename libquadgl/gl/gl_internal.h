@@ -151,6 +151,7 @@
     X(void *, MapBufferRange, (GLenum, GLintptr, GLsizeiptr, GLbitfield)) \
     X(GLboolean, UnmapBuffer, (GLenum)) \
     X(void, MultiDrawArrays, (GLenum, const GLint *, const GLsizei *, GLsizei)) \
+    X(void, MultiDrawElements, (GLenum, const GLsizei *, GLenum, const void *const *, GLsizei)) \
     X(GLsync, FenceSync, (GLenum, GLbitfield)) \
     X(GLenum, ClientWaitSync, (GLsync, GLbitfield, GLuint64)) \
     X(void, DeleteSync, (GLsync)) \
@@ -370,7 +371,9 @@ enum {
                                polygon offset, vertex colour clamping, provoking vertex */
     QGL__D_FFP = 1 << 2,    /* the fixed-function key: textures, lighting, fog, clip planes, ... */
     QGL__D_BIND = 1 << 3,   /* vertex array and array buffer bindings, client active texture */
-    QGL__D_ALL = (1 << 4) - 1
+    QGL__D_ORDER = 1 << 4,  /* what decides whether drawing order shows: depth test, function and
+                               writes, the draw framebuffer's depth bits, blending, stencil, logic op */
+    QGL__D_ALL = (1 << 5) - 1
 };
 
 typedef struct qgl__state {
@@ -389,6 +392,9 @@ typedef struct qgl__state {
     int nonaffine;            /* per-vertex work whose result is not affine in the captured
                                  attributes (smooth lighting, sphere map...): never split exactly */
     int polygon_offset;       /* GL_POLYGON_OFFSET_FILL (needs rasterizer depth) */
+    int order_free;           /* the nearest fragment wins whatever the order quads are drawn in
+                                 (depth tested against a depth buffer, written, no blending,
+                                 stencil or logic op): a batch may be drawn grouped by path */
     int pv_material;          /* lit quads with per-vertex materials: only the shaders draw them
                                  right (the driver's split sees the last material only) */
     int lit_by_inputs;        /* the per-vertex work is a function of the captured attributes
@@ -469,6 +475,9 @@ struct qgl_context {
     qgl__verts sub;           /* fallback output */
     qgl__verts pvmat;         /* draw.c: a batch's glMaterial calls as per-vertex materials */
     qgl__verts unrolled;      /* mesh.c: a run of quad primitives as one GL_QUADS batch */
+    qgl__verts grouped;       /* draw.c: a batch's quads grouped by path */
+    double *grouped_clip;
+    size_t grouped_clip_cap;
     uint16_t *unrolled_facts;
     size_t unrolled_facts_cap;
     double *clip;             /* 4 per vertex */
@@ -489,6 +498,10 @@ struct qgl_context {
     size_t nchg, chg_next;
     const qgl__verts *chg_verts;
     GLint *multi_first;       /* mesh.c: glMultiDrawArrays' arguments */
+    const void **multi_offset;
+    size_t multi_cap3;
+    unsigned char *ways;      /* mesh.c: how each primitive of a mesh is drawn */
+    size_t ways_cap;
     GLsizei *multi_count;
     size_t multi_cap, multi_cap2;
     qgl__state state;         /* the state of the last draw (state.c) */
@@ -547,6 +560,10 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
                     const qgl__change *chg, size_t nchg);
 int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts);
 uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
+/* Planarity of object-space corners given as floats: within 1e-6 of the quad's extent, or
+ * within what rounding the corners to float can do (a small quad far from the origin, as a
+ * fine sphere's, is planar only to its coordinates' precision). */
+int qgl__planar(const double p[4][3]);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
 /* state.c: the owner will mark every change of the groups from now on; a group changed. */
 void qgl__state_track(qgl_context *ctx);

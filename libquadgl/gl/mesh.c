@@ -275,16 +275,18 @@ static int groups(const qgl__mesh *m, size_t i, int way)
     return way == 1 && !m->prim[i].nchg;
 }
 
-/* Primitives [i0, i1) (quads the planner draws, no materials inside) as one GL_QUADS batch with
- * their facts: one plan, one upload and a draw per run of one path, where a primitive at a
- * time took a draw each (a lathed chess piece is hundreds of strips). A strip's quads keep the
- * diagonal the driver splits them on, or under flat shading their provoking vertex. 0 without
- * memory. */
-static int draw_group(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, size_t i0, size_t i1)
+/* Primitives [i0, i1) (all, or with ways those it marks to group: quads the planner draws,
+ * no materials inside) as one GL_QUADS batch with their facts: one plan, one upload and a draw
+ * per run of one path, where a primitive at a time took a draw each (a lathed chess piece is
+ * hundreds of strips). A strip's quads keep the diagonal the driver splits them on, or under
+ * flat shading their provoking vertex. 0 without memory. */
+static int draw_group(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, size_t i0, size_t i1,
+                      const unsigned char *ways)
 {
     size_t nq = 0, n = 0;
     for (size_t i = i0; i < i1; i++)
-        nq += qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+        if (!ways || groups(m, i, ways[i]))
+            nq += qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
     qgl__verts *u = &ctx->unrolled;
     if (!qgl__verts_reserve(u, 4 * nq, m->v.mask & ~(unsigned)QGL__A_MATERIAL) ||
         !grow((void **)&ctx->unrolled_facts, &ctx->unrolled_facts_cap, nq, sizeof *ctx->unrolled_facts))
@@ -294,6 +296,8 @@ static int draw_group(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, size
     unsigned all = 0xffffu;
     for (size_t i = i0; i < i1; i++) {
         const qgl__mesh_prim *p = &m->prim[i];
+        if (ways && !groups(m, i, ways[i]))
+            continue;
         size_t k = qgl__nquads(topology(p->mode), p->count);
         qgl__verts w = view(&m->v, p->first, p->count);
         if (p->mode == GL_QUADS)
@@ -310,24 +314,44 @@ static int draw_group(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, size
     return 1;
 }
 
-int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
+/* The quads of native primitive i counted on the path the state gives them. */
+static int count_native(qgl_context *ctx, const qgl__mesh *m, size_t i, int path)
 {
-    if (!ctx->has_vao || m->generic || !m->nprim)
-        return m->nprim ? -1 : 0;
-    qgl__state st;
-    qgl__query_state(ctx, &st);
-    int quads = 0, pointed = 0, touched = 0, path = QGL__P_SPLIT;
-    GLint app_vao = st.vao, app_buffer = st.array_buffer, app_client = st.client_texture;
+    if (!is_quads(m->prim[i].mode))
+        return 0;
+    size_t nq = qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+    ctx->stats.quads += nq;
+    qgl__count_path(ctx, (unsigned char)path, nq);
+    return (int)nq;
+}
+
+/* Primitive i through the planner, or (materials inside, not quads) replayed; its quads. */
+static int draw_one(qgl_context *ctx, qgl__mesh *m, size_t i, int way)
+{
+    const qgl__mesh_prim *p = &m->prim[i];
+    qgl__verts w = view(&m->v, p->first, p->count);
+    qgl__facts f = {m->facts + p->facts0, m->pfacts[i], NULL, NULL};
+    int k = 0;
+    for (size_t c = 0; c < p->nchg; c++)
+        m->chg[p->chg0 + c].vertex -= p->first;
+    if (way == 1 || is_quads(p->mode))
+        k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE, m->chg + p->chg0, p->nchg);
+    else
+        qgl__replay_prim(ctx, p->mode, &w, m->chg + p->chg0, p->nchg);
+    for (size_t c = 0; c < p->nchg; c++)
+        m->chg[p->chg0 + c].vertex += p->first;
+    return k > 0 ? k : 0;
+}
+
+/* The primitives the driver draws as they are, in order: runs between the others. */
+static int draw_in_order(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, const void *owner, int *touched)
+{
+    int quads = 0, pointed = 0, path = QGL__P_SPLIT;
     size_t run = 0;
     for (size_t i = 0; i <= m->nprim; i++) {
-        int way = i < m->nprim ? prim_way(ctx, &st, m, i, &path) : 3;
+        int way = i < m->nprim ? prim_way(ctx, st, m, i, &path) : 3;
         if (way == 0) {
-            if (is_quads(m->prim[i].mode)) {
-                size_t nq = qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
-                ctx->stats.quads += nq;
-                qgl__count_path(ctx, (unsigned char)path, nq);
-                quads += (int)nq;
-            }
+            quads += count_native(ctx, m, i, path);
             continue;
         }
         if (run < i) {
@@ -336,41 +360,105 @@ int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
             if (!pointed)
                 point(ctx, m), pointed = 1;
             draw_run(ctx, m, run, i);
-            touched = 1;
+            *touched = 1;
         }
         run = i + 1;
         if (way == 3)
             break;
         size_t j = i + 1;
-        while (j < m->nprim && groups(m, i, way) && groups(m, j, prim_way(ctx, &st, m, j, &path)))
+        while (j < m->nprim && groups(m, i, way) && groups(m, j, prim_way(ctx, st, m, j, &path)))
             j++;
-        if (j > i + 1 && draw_group(ctx, &st, m, i, j)) {
+        if (j > i + 1 && draw_group(ctx, st, m, i, j, NULL)) {
             for (size_t k = i; k < j; k++)
                 quads += (int)qgl__nquads(topology(m->prim[k].mode), m->prim[k].count);
             run = j;
             i = j - 1;
-            pointed = 0;
-            continue;
-        }
-        const qgl__mesh_prim *p = &m->prim[i];
-        qgl__verts w = view(&m->v, p->first, p->count);
-        qgl__facts f = {m->facts + p->facts0, m->pfacts[i], NULL, NULL};
-        if (way == 1 || is_quads(p->mode)) {
-            for (size_t c = 0; c < p->nchg; c++)
-                m->chg[p->chg0 + c].vertex -= p->first;
-            int k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE, m->chg + p->chg0, p->nchg);
-            for (size_t c = 0; c < p->nchg; c++)
-                m->chg[p->chg0 + c].vertex += p->first;
-            quads += k > 0 ? k : 0;
         } else {
-            for (size_t c = 0; c < p->nchg; c++)
-                m->chg[p->chg0 + c].vertex -= p->first;
-            qgl__replay_prim(ctx, p->mode, &w, m->chg + p->chg0, p->nchg);
-            for (size_t c = 0; c < p->nchg; c++)
-                m->chg[p->chg0 + c].vertex += p->first;
+            quads += draw_one(ctx, m, i, way);
         }
         pointed = 0; /* the planner draws through the same VAO from the stream buffer */
     }
+    return quads;
+}
+
+/* Native primitives (ways[i] == 0) of one mode in one multi-draw. */
+static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < m->nprim; i++)
+        n += !ctx->ways[i] && m->prim[i].mode == mode;
+    if (!n)
+        return 0;
+    if (!grow((void **)&ctx->multi_first, &ctx->multi_cap, n, sizeof *ctx->multi_first) ||
+        !grow((void **)&ctx->multi_count, &ctx->multi_cap2, n, sizeof *ctx->multi_count) ||
+        !grow((void **)&ctx->multi_offset, &ctx->multi_cap3, n, sizeof *ctx->multi_offset))
+        return -1;
+    n = 0;
+    for (size_t i = 0; i < m->nprim; i++) {
+        const qgl__mesh_prim *p = &m->prim[i];
+        if (ctx->ways[i] || p->mode != mode)
+            continue;
+        ctx->multi_first[n] = (GLint)p->first;
+        ctx->multi_count[n] = (GLsizei)(mode == GL_QUADS ? 6 * (p->count / 4) : p->count);
+        ctx->multi_offset[n++] = (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)p->idx0);
+    }
+    if (mode == GL_QUADS)
+        ctx->gl.MultiDrawElements(GL_TRIANGLES, ctx->multi_count, GL_UNSIGNED_INT, ctx->multi_offset, (GLsizei)n);
+    else
+        ctx->gl.MultiDrawArrays(mode, ctx->multi_first, ctx->multi_count, (GLsizei)n);
+    ctx->stats.draws++;
+    return 1;
+}
+
+/* Where drawing order cannot show (qgl__state.order_free), by kind: the primitives the driver
+ * draws as they are, a multi-draw per mode; then every quad primitive the planner draws, as
+ * one group; then those with materials inside, one by one. -1: drawn in order instead. */
+static int draw_by_kind(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, const void *owner, int *touched)
+{
+    int quads = 0, natives = 0, grouped = 0, path = QGL__P_SPLIT;
+    if (!ctx->gl.MultiDrawArrays || !ctx->gl.MultiDrawElements ||
+        !grow((void **)&ctx->ways, &ctx->ways_cap, m->nprim, 1))
+        return -1;
+    for (size_t i = 0; i < m->nprim; i++) {
+        int way = prim_way(ctx, st, m, i, &path);
+        ctx->ways[i] = (unsigned char)way;
+        natives += way == 0;
+        grouped += groups(m, i, way);
+        if (way == 0)
+            quads += count_native(ctx, m, i, path);
+    }
+    if (natives) {
+        if (!resident(ctx, m, owner))
+            return quads;
+        point(ctx, m);
+        *touched = 1;
+        for (GLenum mode = GL_POINTS; mode <= GL_TRIANGLE_STRIP_ADJACENCY; mode++)
+            draw_mode(ctx, m, mode);
+    }
+    if (grouped > 1 && draw_group(ctx, st, m, 0, m->nprim, ctx->ways)) {
+        for (size_t i = 0; i < m->nprim; i++)
+            if (groups(m, i, ctx->ways[i]))
+                quads += (int)qgl__nquads(topology(m->prim[i].mode), m->prim[i].count);
+        grouped = -1;
+    }
+    for (size_t i = 0; i < m->nprim; i++)
+        if (ctx->ways[i] && !(grouped < 0 && groups(m, i, ctx->ways[i])))
+            quads += draw_one(ctx, m, i, ctx->ways[i]);
+    return quads;
+}
+
+int qgl__mesh_draw(qgl_context *ctx, qgl__mesh *m, const void *owner)
+{
+    if (!ctx->has_vao || m->generic || !m->nprim)
+        return m->nprim ? -1 : 0;
+    qgl__state st;
+    qgl__query_state(ctx, &st);
+    int touched = 0, quads = -1;
+    GLint app_vao = st.vao, app_buffer = st.array_buffer, app_client = st.client_texture;
+    if (st.order_free && m->nprim > 1)
+        quads = draw_by_kind(ctx, &st, m, owner, &touched);
+    if (quads < 0)
+        quads = draw_in_order(ctx, &st, m, owner, &touched);
     if (touched) {
         ctx->gl.BindVertexArray((GLuint)app_vao);
         ctx->gl.BindBuffer(GL_ARRAY_BUFFER, (GLuint)app_buffer);

@@ -1,7 +1,8 @@
 /* state.c: read the application's GL state at a draw and reduce it to the program key.
  *
  * Everything that decides how a quad may be drawn is read here, once per batch: matrices,
- * viewport, shade model, render and polygon modes, and the fixed-function features the
+ * viewport, shade model, render and polygon modes, whether drawing order can show (depth,
+ * blending, stencil, logic op), and the fixed-function features the
  * generated programs reproduce (lighting with its lights' kinds, colour material, light model,
  * normal scaling, every texture unit's target, texgen modes, environment with its COMBINE
  * state and the texture's base format, fog, colour sum, clip planes). The result is the key
@@ -409,6 +410,20 @@ static void query_raster(qgl_context *ctx, qgl__state *st)
     st->first_vertex_pv = pv == GL_FIRST_VERTEX_CONVENTION;
 }
 
+static void query_order(qgl_context *ctx, qgl__state *st)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    GLboolean mask = GL_FALSE;
+    GLint func = GL_ALWAYS, bits = 0;
+    gl->GetBooleanv(GL_DEPTH_WRITEMASK, &mask);
+    gl->GetIntegerv(GL_DEPTH_FUNC, &func);
+    gl->GetIntegerv(GL_DEPTH_BITS, &bits);
+    st->order_free = gl->IsEnabled(GL_DEPTH_TEST) && mask && bits > 0 &&
+                     (func == GL_LESS || func == GL_LEQUAL || func == GL_GREATER || func == GL_GEQUAL) &&
+                     !gl->IsEnabled(GL_BLEND) && !gl->IsEnabled(GL_STENCIL_TEST) &&
+                     !gl->IsEnabled(GL_COLOR_LOGIC_OP);
+}
+
 static void query_ffp_group(qgl_context *ctx, qgl__state *st)
 {
     memset(&st->ffp, 0, sizeof st->ffp);
@@ -499,6 +514,8 @@ void qgl__query_state(qgl_context *ctx, qgl__state *st)
         query_xform(ctx, c);
     if (need & QGL__D_BIND)
         query_bind(ctx, c);
+    if (need & QGL__D_ORDER)
+        query_order(ctx, c);
     if (need)
         derive(ctx, c);
     ctx->state_valid = QGL__D_ALL;

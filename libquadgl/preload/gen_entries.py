@@ -37,7 +37,7 @@ TYPES = {
 }
 
 # Dirty groups (preload.h's PL_D_*), by name in RULES.
-GROUPS = {'XFORM': 'PL_D_XFORM', 'RASTER': 'PL_D_RASTER', 'FFP': 'PL_D_FFP', 'BIND': 'PL_D_BIND',
+GROUPS = {'XFORM': 'PL_D_XFORM', 'RASTER': 'PL_D_RASTER', 'FFP': 'PL_D_FFP', 'BIND': 'PL_D_BIND', 'ORDER': 'PL_D_ORDER',
           'CURRENT': 'PL_D_CURRENT'}
 
 # What a call may change, first match wins. None: a pure query of state (nothing to mark, no
@@ -46,7 +46,9 @@ RULES = [
     (r'^gl(Get|Is)(?!n?(Compressed)?Tex(ture)?(Sub)?Image|(Named)?BufferSubData|Query(Object|Buffer|Indexed)|'
      r'Sync|n?ColorTable|n?Histogram|n?Minmax|n?Convolution|n?Separable)', None),
     (r'^gl(Uniform|ProgramUniform)', None),
-    (r'^glPopAttrib$', 'XFORM RASTER FFP CURRENT'),
+    (r'^glPopAttrib$', 'XFORM RASTER FFP ORDER CURRENT'),
+    (r'^gl(DepthMask|DepthFunc|BindFramebuffer(EXT)?)$', 'ORDER'),
+    (r'^gl(Enablei|Disablei|EnableIndexedEXT|DisableIndexedEXT)$', 'FFP ORDER'),
     (r'^gl(LoadIdentity|(Load|Mult)(Transpose)?Matrix[fd](ARB)?|Rotate[fd]|Translate[fd]|Scale[fd]|Frustum|Ortho|'
      r'PopMatrix|Viewport\w*|Matrix(Load|Mult|Rotate|Scale|Translate|Frustum|Ortho|Pop)\w*EXT)$', 'XFORM'),
     (r'^gl(ShadeModel|PolygonMode|RenderMode|UseProgram|UseProgramObjectARB|BindProgramPipeline|'

@@ -152,6 +152,7 @@ enum {
     PL_D_RASTER = QGL__D_RASTER,
     PL_D_FFP = QGL__D_FFP,
     PL_D_BIND = QGL__D_BIND,
+    PL_D_ORDER = QGL__D_ORDER,
     PL_D_CURRENT = 1 << 8,
     PL_D_STATE = QGL__D_ALL
 };

@@ -60,15 +60,17 @@ GLboolean pl_current_edge(pl_ctx *x)
     return x->cur_edge;
 }
 
-/* The groups a capability's glEnable or glDisable changes: none for those the GL path never
- * reads (per-fragment tests, blending, smoothing, ...), the key for the rest and for any it
- * does not know. */
+/* The groups a capability's glEnable or glDisable changes: whether drawing order shows for
+ * depth test, blending, stencil and logic op, none for those the GL path never reads (other
+ * per-fragment tests, smoothing, ...), the key for the rest and for any it does not know. */
 static unsigned pl_cap_mask(GLenum cap)
 {
     switch (cap) {
-    case GL_DEPTH_TEST: case GL_BLEND: case GL_CULL_FACE: case GL_ALPHA_TEST: case GL_STENCIL_TEST:
+    case GL_DEPTH_TEST: case GL_BLEND: case GL_STENCIL_TEST: case GL_COLOR_LOGIC_OP:
+        return PL_D_ORDER;
+    case GL_CULL_FACE: case GL_ALPHA_TEST:
     case GL_SCISSOR_TEST: case GL_DITHER: case GL_LINE_SMOOTH: case GL_POINT_SMOOTH: case GL_POLYGON_SMOOTH:
-    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_COLOR_LOGIC_OP: case GL_INDEX_LOGIC_OP:
+    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_INDEX_LOGIC_OP:
     case GL_MULTISAMPLE: case GL_SAMPLE_ALPHA_TO_COVERAGE: case GL_SAMPLE_ALPHA_TO_ONE: case GL_SAMPLE_COVERAGE:
     case GL_POLYGON_OFFSET_LINE: case GL_POLYGON_OFFSET_POINT: case GL_AUTO_NORMAL: case GL_FRAMEBUFFER_SRGB:
     case GL_POINT_SPRITE: case GL_PROGRAM_POINT_SIZE: case GL_PRIMITIVE_RESTART: case GL_DEBUG_OUTPUT:

@@ -9,7 +9,9 @@
  * frame draws a strip of 100 slivers (0.25 x 8 pixels) followed by one large quad: the slivers are a run long
  * enough to be worth the driver's own draw, so AUTO splits them (2 draws), and its picture
  * equals the driver's quads there within 0 (the split is what the driver does) and method
- * MVC_PLANE on the large quad. */
+ * MVC_PLANE on the large quad. A third draws four such runs, each followed by a large quad,
+ * in one GL_QUADS primitive: in order that is 8 draws; with the depth test on (order cannot
+ * show) the runs are grouped by path into 2, and the picture must not change. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,6 +55,25 @@ static void long_run(void)
         vertex(2 * i, x, -4 * px);
         vertex(2 * i + 1, x, 4 * px);
         x += i < 100 ? 0.25f * px : 0.9f;
+    }
+    qglEnd();
+}
+
+/* Four long runs of slivers, each followed by a large quad, as GL_QUADS in one primitive. */
+static void interleaved(void)
+{
+    const float px = 2.0f / 256;
+    qglBegin(GL_QUADS);
+    for (int r = 0; r < 4; r++) {
+        float y0 = -0.9f + 0.45f * (float)r, x = -0.9f;
+        for (int i = 0; i <= 40; i++) {
+            float w = i < 40 ? 0.25f * px : 0.9f, h = i < 40 ? 8 * px : 0.3f;
+            vertex(4 * (50 * r + i), x, y0);
+            vertex(4 * (50 * r + i) + 1, x + w, y0);
+            vertex(4 * (50 * r + i) + 2, x + w, y0 + h);
+            vertex(4 * (50 * r + i) + 3, x, y0 + h + (i < 40 ? 0 : 0.1f));
+            x += i < 40 ? 0.5f * px : 0;
+        }
     }
     qglEnd();
 }
@@ -113,6 +134,23 @@ int main(void)
     free(a);
     free(m);
     free(s);
+
+    /* With the depth test on, drawing order cannot show: the split slivers are drawn in one
+     * draw and the large quads in another, and the picture is the one drawn in order. */
+    glClear(GL_DEPTH_BUFFER_BIT);
+    a = frame(&t, QGL_METHOD_AUTO, interleaved, &sa);
+    glEnable(GL_DEPTH_TEST);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    m = frame(&t, QGL_METHOD_AUTO, interleaved, &sm);
+    glDisable(GL_DEPTH_TEST);
+    d = differ(&t, a, m, 0, t.w);
+    printf("interleaved runs: in order %llu draws, depth-tested %llu draws (split %llu, mvc %llu); pictures differ in %d px\n",
+           (unsigned long long)sa.draws, (unsigned long long)sm.draws, (unsigned long long)sm.split,
+           (unsigned long long)sm.mvc, d);
+    th_check(sa.draws == 8 && sm.draws == 2 && sm.split == 160 && sm.mvc == 4, "interleaved runs: draws");
+    th_check(d == 0, "interleaved runs: grouping by path changed the picture");
+    free(a);
+    free(m);
     th_free(&t);
     return th_failures ? 1 : 0;
 }

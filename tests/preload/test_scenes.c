@@ -573,6 +573,73 @@ static void scene_list_strips(pt_run *r)
     r->min_quads = 24;
 }
 
+/* A display list alternating primitives the driver draws as they are (triangles, a fan, affine
+ * quads) with strips and quads that need smoothing, drawn with the depth test on, where the
+ * order of primitives cannot show: the library may draw it by kind, a draw per mode and one
+ * for the smooth quads, and the picture must not change (the driver's pixels outside the
+ * smooth quads, the reference inside). */
+static void scene_list_depth(pt_run *r)
+{
+    static const int order[4] = {0, 1, 3, 2};
+    uint64_t before[PT_NCOUNTERS];
+    float st[6][2], v[4][2], c[4][4];
+    GLuint list = glGenLists(1);
+    pt_begin_frame();
+    glEnable(GL_DEPTH_TEST);
+    glNewList(list, GL_COMPILE);
+    for (int k = 0; k < 3; k++) {
+        list_strip(k, 0, st);
+        glBegin(GL_QUAD_STRIP);
+        for (int i = 0; i < 6; i++) {
+            glColor4fv(SC[(i + k) % 6]);
+            glVertex2fv(st[i]);
+        }
+        glEnd();
+        glBegin(k == 1 ? GL_TRIANGLE_FAN : GL_TRIANGLES); /* above the strip, in its column */
+        glColor3f(0.2f * (float)k, 0.5f, 0.9f);
+        glVertex2f(st[4][0], 0.3f);
+        glVertex2f(st[5][0], 0.3f);
+        glColor3f(0.9f, 0.3f * (float)k, 0.1f);
+        glVertex2f(st[5][0], 0.6f);
+        glEnd();
+        glBegin(GL_QUADS); /* affine colours: the driver's split is exact */
+        glColor3f(0.1f, 0.2f, 0.3f);
+        glVertex2f(st[4][0], 0.7f);
+        glColor3f(0.5f, 0.2f, 0.3f);
+        glVertex2f(st[5][0], 0.7f);
+        glColor3f(0.5f, 0.6f, 0.3f);
+        glVertex2f(st[5][0], 0.95f);
+        glColor3f(0.1f, 0.6f, 0.3f);
+        glVertex2f(st[4][0], 0.95f);
+        glEnd();
+    }
+    glEndList();
+    pt_counters(before);
+    glCallList(list);
+    uint64_t d = draws_since(before);
+    if (d > 4)
+        snprintf(r->failure, sizeof r->failure, "a depth-tested list of 9 primitives took %llu draws",
+                 (unsigned long long)d);
+    glDisable(GL_DEPTH_TEST);
+    glDeleteLists(list, 1);
+    for (int k = 0; k < 3; k++) {
+        list_strip(k, 0, st);
+        for (int q = 0; q < 2; q++) {
+            for (int i = 0; i < 4; i++) {
+                int j = 2 * q + order[i];
+                v[i][0] = st[j][0], v[i][1] = st[j][1];
+                memcpy(c[i], SC[(j + k) % 6], sizeof c[i]);
+            }
+            pt_expect(r, v, c, 0);
+        }
+        const float flat[4][4] = {{0.1f, 0.2f, 0.3f, 1}, {0.5f, 0.2f, 0.3f, 1}, {0.5f, 0.6f, 0.3f, 1}, {0.1f, 0.6f, 0.3f, 1}};
+        const float a[4][2] = {{st[4][0], 0.7f}, {st[5][0], 0.7f}, {st[5][0], 0.95f}, {st[4][0], 0.95f}};
+        pt_expect(r, a, flat, 0);
+    }
+    r->checks_reference = 1;
+    r->min_quads = 9;
+}
+
 /* Small planar quads with affine colours (the split is exact, so every method must give the
  * driver's pixels) and state changes between them that a batch must not cross: blending,
  * polygon mode, texturing, depth test, line width, the clear colour and a clear. */
@@ -921,6 +988,7 @@ static const pt_scene scenes[] = {
     {"batch_draws", scene_batch_draws},
     {"materials", scene_materials},
     {"list_strips", scene_list_strips},
+    {"list_depth", scene_list_depth},
 };
 
 int main(int argc, char **argv)
