@@ -628,6 +628,19 @@ void qgl__glsl120_free(qgl_context *ctx);
 int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
                       size_t nq, unsigned key, GLint *bound);
 
+/* external.c: the visible part of a quad with a corner behind the eye (clip corners, any
+ * sign of w) on its split along diagonal diag (0: corners 0-2, 1: 1-3), cut by its screen
+ * quad (H&T's external quad, eq. 12 in the projective plane) and the view volume: convex
+ * pieces, each vertex as the four corner weights of its clip (and homogeneous object)
+ * position. Returns how many, at most max (QGL__PIECES_MAX always suffices). */
+#define QGL__PIECE_VERTS 16
+#define QGL__PIECES_MAX 16
+typedef struct qgl__piece {
+    int n;
+    double cw[QGL__PIECE_VERTS][4];
+} qgl__piece;
+int qgl__external_pieces(const double clip[4][4], int diag, qgl__piece *out, int max);
+
 /* fallback.c: append the subdivision of quad q of v to out (same attributes as v). */
 int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
                    size_t q, qgl__verts *out);
