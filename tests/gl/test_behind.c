@@ -486,8 +486,7 @@ int main(void)
                     }
                     free(drv);
                 }
-    printf("%d random quads, %d to %d corners behind the eye, planar and not, convex, concave and bow-tie:\n", nquads, 1,
-           3);
+    printf("%d random quads, 1 to 3 corners behind the eye, planar and not, convex, concave and bow-tie:\n", nquads);
     for (int k = 0; k < NP; k++) {
         path *p = &paths[k];
         if (p->method == QGL_METHOD_SPLIT)
