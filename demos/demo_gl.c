@@ -223,7 +223,8 @@ static qgl_method helper_method(demo_method m)
 }
 #endif
 
-static int emit(demo_gl *g, const demo_scene *s, const demo_view *v, demo_method m, demo_emit_mode mode)
+/* plane: the GL helper with QGL_METHOD_MVC_PLANE instead of m's method. */
+static int emit(demo_gl *g, const demo_scene *s, const demo_view *v, demo_method m, int plane, demo_emit_mode mode)
 {
     if (m == DEMO_NATIVE) {
         demo_emit_native(s, v, mode);
@@ -232,18 +233,19 @@ static int emit(demo_gl *g, const demo_scene *s, const demo_view *v, demo_method
 #if DEMO_HAVE_QGL
     if (g->qgl && m != DEMO_REFERENCE) {
         qgl_gl_make_current(g->qgl);
-        qgl_gl_set_method(g->qgl, helper_method(m));
+        qgl_gl_set_method(g->qgl, plane ? QGL_METHOD_MVC_PLANE : helper_method(m));
         demo_emit_qgl(s, v, mode);
         return 0;
     }
 #else
     (void)g;
+    (void)plane;
 #endif
     return -1;
 }
 
-int demo_gl_draw(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, demo_method m,
-                 int w, int h)
+static int draw(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, demo_method m, int plane,
+                int w, int h)
 {
     const demo_scene *s = &list->items[si];
     double mvp[16];
@@ -262,12 +264,23 @@ int demo_gl_draw(demo_gl *g, const demo_scene_list *list, int si, const demo_vie
         glFrontFace(GL_CCW);
     }
     demo_emit_mode mode = setup_shading(g, list, si, v);
-    int rc = emit(g, s, v, m, mode);
+    int rc = emit(g, s, v, m, plane, mode);
     glDisable(GL_TEXTURE_2D);
     glDisable(GL_TEXTURE_CUBE_MAP);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     return rc;
+}
+
+int demo_gl_draw(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, demo_method m,
+                 int w, int h)
+{
+    return draw(g, list, si, v, m, 0, w, h);
+}
+
+int demo_gl_draw_plane(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, int w, int h)
+{
+    return draw(g, list, si, v, DEMO_AUTO, 1, w, h);
 }
 
 void demo_gl_wire(const demo_scene_list *list, int si, const demo_view *v, demo_method m, int w, int h)

@@ -29,6 +29,10 @@ void demo_gl_panel(int x, int y, int w, int h);
  * (demo_gl_draw_rgba). Returns 0, or -1 when m cannot draw here. */
 int demo_gl_draw(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, demo_method m,
                  int w, int h);
+/* The same with the GL helper's method MVC_PLANE: the weights AUTO's smooth path uses (in the
+ * quad's plane, a non-planar quad's on its bilinear patch) per fragment on every quad, with
+ * no split or grid: what AUTO's picture would be if the planner chose nothing else. */
+int demo_gl_draw_plane(demo_gl *g, const demo_scene_list *list, int si, const demo_view *v, int w, int h);
 /* The quad outlines of the same view on top of the panel (and the native split's diagonal,
  * dotted, when m is native). */
 void demo_gl_wire(const demo_scene_list *list, int si, const demo_view *v, demo_method m, int w, int h);

@@ -3,7 +3,10 @@
  * Every cell is a picture shrunk to the cell by area averaging (each target pixel is the
  * mean of the source pixels its footprint covers, weighted by overlap, so thin creases stay
  * visible instead of aliasing away); a method's cell is followed by its error heat map
- * against the reference, with the error figures printed underneath. Text uses the demo's
+ * against the reference, with the error figures printed underneath. Auto's also gets its
+ * difference from the per-fragment picture of its own weights on a finer scale, shrunk by the
+ * peak under each cell pixel instead (it is zero but where the planner split, and a mean would
+ * wash out a line of single pixels); the legend has a line per scale. Text uses the demo's
  * own bitmap font. The sheet is built in memory and written once. */
 #include <math.h>
 #include <stdio.h>
@@ -16,7 +19,8 @@
 #define LABEL_W 132
 #define HEADER_H 22
 #define CAPTION_H 12
-#define LEGEND_H 30
+#define LEGEND_LINE 16
+#define LEGEND_H (2 * LEGEND_LINE + 14)
 
 static const unsigned char ink_white[3] = {235, 235, 235};
 static const unsigned char ink_grey[3] = {170, 170, 170};
@@ -78,8 +82,9 @@ void demo_sheet_row_label(demo_sheet *sh, int row, const char *label)
 }
 
 /* Area-averaging resample of src (sw x sh_, RGBA) into the cell, keeping the aspect and
- * centring it. */
-static void blit_scaled(demo_sheet *sh, int x0, int y_top, const unsigned char *src, int sw, int sh_)
+ * centring it; peak: each channel's largest value under the footprint instead, so that a
+ * sparse heat map's single pixels stay visible. */
+static void blit_scaled(demo_sheet *sh, int x0, int y_top, const unsigned char *src, int sw, int sh_, int peak)
 {
     double scale = fmax((double)sw / sh->cell, (double)sh_ / sh->cell);
     int dw = (int)floor(sw / scale), dh = (int)floor(sh_ / scale);
@@ -95,13 +100,13 @@ static void blit_scaled(demo_sheet *sh, int x0, int y_top, const unsigned char *
                     /* picture rows count from the bottom, the target row ty from the top */
                     const unsigned char *p = src + ((size_t)(sh_ - 1 - y) * (size_t)sw + (size_t)x) * 4;
                     for (int k = 0; k < 3; k++)
-                        acc[k] += wgt * p[k];
+                        acc[k] = peak ? fmax(acc[k], wgt > 0 ? p[k] : 0) : acc[k] + wgt * p[k];
                     wsum += wgt;
                 }
             int row = sh->h - 1 - (oy_top + ty);
             unsigned char *d = sh->rgba + ((size_t)row * (size_t)sh->w + (size_t)(ox + tx)) * 4;
             for (int k = 0; k < 3; k++)
-                d[k] = (unsigned char)lrint(wsum > 0 ? acc[k] / wsum : 0);
+                d[k] = (unsigned char)lrint(peak ? acc[k] : wsum > 0 ? acc[k] / wsum : 0);
         }
 }
 
@@ -110,14 +115,24 @@ void demo_sheet_cell(demo_sheet *sh, int row, int col, const unsigned char *rgba
 {
     int x, y;
     cell_origin(sh, row, col, &x, &y);
-    blit_scaled(sh, x, y, rgba, w, h);
+    blit_scaled(sh, x, y, rgba, w, h, 0);
     if (caption)
         demo_text_rgba(sh->rgba, sh->w, sh->h, x, y + sh->cell + 3, 1, ink_grey, caption);
 }
 
-void demo_sheet_legend(demo_sheet *sh, int full_scale)
+void demo_sheet_cell_peak(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
+                          const char *caption)
 {
-    int y_top = sh->h - LEGEND_H + 6, x = LABEL_W, bar_w = 256, bar_h = 10;
+    int x, y;
+    cell_origin(sh, row, col, &x, &y);
+    blit_scaled(sh, x, y, rgba, w, h, 1);
+    if (caption)
+        demo_text_rgba(sh->rgba, sh->w, sh->h, x, y + sh->cell + 3, 1, ink_grey, caption);
+}
+
+void demo_sheet_legend(demo_sheet *sh, int line, int full_scale, const char *what)
+{
+    int y_top = sh->h - LEGEND_H + 6 + line * LEGEND_LINE, x = LABEL_W, bar_w = 256, bar_h = 10;
     unsigned char *a = calloc((size_t)bar_w * bar_h * 4, 1), *b = calloc((size_t)bar_w * bar_h * 4, 1);
     unsigned char *heat = malloc((size_t)bar_w * bar_h * 4);
     if (a && b && heat) {
@@ -130,8 +145,8 @@ void demo_sheet_legend(demo_sheet *sh, int full_scale)
             memcpy(sh->rgba + ((size_t)row * (size_t)sh->w + (size_t)x) * 4, heat + (size_t)j * bar_w * 4,
                    (size_t)bar_w * 4);
         }
-        char text[96];
-        snprintf(text, sizeof text, "0 .. %d levels: largest channel difference from the reference", full_scale);
+        char text[160];
+        snprintf(text, sizeof text, "0 .. %d levels: %s", full_scale, what);
         demo_text_rgba(sh->rgba, sh->w, sh->h, x + bar_w + 8, y_top + 2, 1, ink_grey, text);
     }
     free(a);

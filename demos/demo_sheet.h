@@ -18,7 +18,10 @@ void demo_sheet_row_label(demo_sheet *sh, int row, const char *label);
  * an optional caption underneath. */
 void demo_sheet_cell(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
                      const char *caption);
-/* The heat map's colour scale along the bottom. */
-void demo_sheet_legend(demo_sheet *sh, int full_scale);
+/* The same shrunk by each channel's peak under a cell pixel (a sparse heat map). */
+void demo_sheet_cell_peak(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
+                          const char *caption);
+/* A heat map's colour scale along the bottom, line 0 or 1, with what it shows. */
+void demo_sheet_legend(demo_sheet *sh, int line, int full_scale, const char *what);
 
 #endif

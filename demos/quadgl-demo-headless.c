@@ -6,7 +6,12 @@
  * map PNG, a row of the Markdown table on stdout and a row of the contact sheet. The
  * rotating-order scene is the exception that shows the other half of the problem: there each
  * method's picture at order K+1 is compared with its own picture at order K, so the heat map
- * shows what changes when nothing but the vertex order does. This is a separate executable
+ * shows what changes when nothing but the vertex order does. The auto picture gets a second
+ * heat map: its difference from the per-fragment picture of the weights auto uses (the GL
+ * helper's MVC_PLANE, with no split or grid), saved as SCENE__auto__mvcplane.png, on a finer
+ * scale; it is zero wherever the planner kept the shader path, so it shows where the planner
+ * chose the split or the mean value grid and what that cost (the planner's budget is half an
+ * 8-bit level for colours, 1/32 texel for texture coordinates). This is a separate executable
  * from the window program because it links OSMesa's gl* functions and the window program
  * links libGL's: one process cannot have both answer to glBegin. */
 #include <GL/osmesa.h>
@@ -23,6 +28,7 @@
 
 #define REPEATS 3
 #define HEAT_SCALE 32
+#define TWIN_SCALE 4 /* levels: auto against its per-fragment twin, within a level or two */
 #define SHEET_CELL 160
 
 typedef struct run {
@@ -135,7 +141,7 @@ static int make_current(run *r, int w, int h)
 typedef struct picture {
     unsigned char *rgba;
     double ms;
-    char paths[128]; /* the GL helper's counters: which path drew the quads */
+    char paths[192]; /* the GL helper's counters: which path drew the quads */
 } picture;
 
 static void helper_paths(run *r, demo_method m, char *out, size_t n)
@@ -145,8 +151,9 @@ static void helper_paths(run *r, demo_method m, char *out, size_t n)
     if (r->gl.qgl && m != DEMO_NATIVE && m != DEMO_REFERENCE) {
         qgl_gl_stats_t st;
         qgl_gl_stats(r->gl.qgl, &st);
-        snprintf(out, n, "mvc %llu split %llu subdiv %llu pass %llu", (unsigned long long)st.mvc / REPEATS,
-                 (unsigned long long)st.split / REPEATS, (unsigned long long)st.subdiv / REPEATS,
+        snprintf(out, n, "mvc %llu split %llu grid %llu fallback %llu pass %llu",
+                 (unsigned long long)st.mvc / REPEATS, (unsigned long long)st.split / REPEATS,
+                 (unsigned long long)st.subdiv / REPEATS, (unsigned long long)st.fallback / REPEATS,
                  (unsigned long long)st.passthrough / REPEATS);
     }
 #else
@@ -210,13 +217,25 @@ static int save(run *r, const char *label, const char *method, const char *suffi
     return 0;
 }
 
-/* Sheet column of method index i: the methods in order, each followed by its heat map,
- * except the reference, which has none. */
+/* Whether method m gets the column of its difference from its per-fragment twin. */
+static int has_twin(const run *r, demo_method m)
+{
+    return m == DEMO_AUTO && r->gl.qgl;
+}
+
+/* Sheet columns of a method: its picture, then its heat map (but the reference's), then
+ * auto's difference from its twin. */
+static int sheet_width(const run *r, demo_method m)
+{
+    return m == DEMO_REFERENCE ? 1 : has_twin(r, m) ? 3 : 2;
+}
+
+/* Sheet column of method index i. */
 static int sheet_col(const run *r, int i)
 {
     int col = 0;
     for (int k = 0; k < i; k++)
-        col += r->methods[k] == DEMO_REFERENCE ? 1 : 2;
+        col += sheet_width(r, r->methods[k]);
     return col;
 }
 
@@ -242,6 +261,36 @@ static void report(run *r, int row, int i, const demo_scene *s, const picture *p
                demo_method_name(m), p->ms);
 }
 
+/* Auto's picture p against its twin (twin: w x h x 4 scratch, heat: the heat map's): the
+ * picture, the heat map, the sheet cell and the table row. */
+static int report_twin(run *r, int row, int i, int si, const demo_view *v, const picture *p, int w, int h,
+                       unsigned char *twin, unsigned char *heat)
+{
+    const demo_scene *s = &r->scenes.items[si];
+    demo_gl_panel(0, 0, w, h);
+    if (demo_gl_draw_plane(&r->gl, &r->scenes, si, v, w, h)) {
+        fprintf(stderr, "quadgl-demo: scene %s: drawing with mvcplane failed\n", s->label);
+        return -1;
+    }
+    if (v->wireframe)
+        demo_gl_wire(&r->scenes, si, v, DEMO_AUTO, w, h);
+    glFinish();
+    demo_gl_read(0, 0, w, h, twin);
+    demo_error e;
+    demo_compare(p->rgba, twin, w, h, &e);
+    demo_heatmap(p->rgba, twin, w, h, TWIN_SCALE, heat);
+    if (save(r, s->label, "auto", "__mvcplane", w, h, twin) ||
+        save(r, s->label, "auto", "__vs_mvcplane", w, h, heat))
+        return -1;
+    char caption[64];
+    snprintf(caption, sizeof caption, "rms %.2f max %d", e.rms, e.max);
+    demo_sheet_cell_peak(&r->sheet, row, sheet_col(r, i) + 2, heat, w, h, caption);
+    if (!r->opt.quiet)
+        printf("| %-22s | %-9s | %8s | %6.2f | %4.0f | %3d | against mvcplane; %s |\n", s->label, "auto-pf", "-",
+               e.rms, e.p99, e.max, p->paths);
+    return 0;
+}
+
 static int render_scene(run *r, int si, int row)
 {
     const demo_scene *s = &r->scenes.items[si];
@@ -250,7 +299,7 @@ static int render_scene(run *r, int si, int row)
     if (make_current(r, w, h))
         return -1;
     size_t bytes = (size_t)w * (size_t)h * 4;
-    unsigned char *ref = malloc(bytes), *heat = malloc(bytes);
+    unsigned char *ref = malloc(bytes), *heat = malloc(bytes), *twin = malloc(bytes);
     picture p = {malloc(bytes), 0, ""};
     demo_view v, turned;
     demo_view_reset(&v);
@@ -259,7 +308,7 @@ static int render_scene(run *r, int si, int row)
     v.shading = r->opt.shading;
     turned = v;
     turned.order = (v.order + 1) % 4;
-    int rc = ref && heat && p.rgba ? demo_sw_render(s, &v, "exact", w, h, ref) : -1;
+    int rc = ref && heat && twin && p.rgba ? demo_sw_render(s, &v, "exact", w, h, ref) : -1;
     demo_sheet_row_label(&r->sheet, row, s->label);
     for (int i = 0; rc == 0 && i < r->nmethods; i++) {
         demo_method m = r->methods[i];
@@ -283,9 +332,12 @@ static int render_scene(run *r, int si, int row)
         if (rc == 0 && with_heat)
             rc = save(r, s->label, demo_method_name(m), "__err", w, h, heat);
         report(r, row, i, s, &p, &e, w, h, with_heat && m != DEMO_REFERENCE ? heat : NULL);
+        if (rc == 0 && has_twin(r, m))
+            rc = report_twin(r, row, i, si, s->animate_order ? &turned : &v, &p, w, h, twin, heat);
     }
     free(ref);
     free(heat);
+    free(twin);
     free(p.rgba);
     return rc;
 }
@@ -294,7 +346,7 @@ static int render_scene(run *r, int si, int row)
 
 static int sheet_setup(run *r)
 {
-    const char *names[2 * DEMO_NMETHODS];
+    const char *names[3 * DEMO_NMETHODS];
     char heat_names[DEMO_NMETHODS][48];
     int n = 0;
     for (int i = 0; i < r->nmethods; i++) {
@@ -303,6 +355,8 @@ static int sheet_setup(run *r)
             snprintf(heat_names[i], sizeof heat_names[i], "%s error", demo_method_name(r->methods[i]));
             names[n++] = heat_names[i];
         }
+        if (has_twin(r, r->methods[i]))
+            names[n++] = "auto - mvcplane";
     }
     return demo_sheet_init(&r->sheet, r->last - r->first + 1, n, SHEET_CELL, names);
 }
@@ -317,6 +371,11 @@ static int render_all(run *r)
     if (make_current(r, 64, 64))
         return -1;
     demo_gl_init(&r->gl, r->scenes.count, get_proc);
+    if (sheet_setup(r)) { /* after the GL helper: auto's twin column needs it */
+        demo_gl_fini(&r->gl);
+        fprintf(stderr, "quadgl-demo: out of memory for the contact sheet\n");
+        return -1;
+    }
     if (!r->opt.quiet) {
         printf("GL: %s, %s; GL helper: %s\n\n", (const char *)glGetString(GL_RENDERER),
                (const char *)glGetString(GL_VERSION), r->gl.qgl ? "yes" : r->gl.qgl_error);
@@ -332,7 +391,9 @@ static int render_all(run *r)
     if (r->failures)
         return -1;
     char path[1200], err[512];
-    demo_sheet_legend(&r->sheet, HEAT_SCALE);
+    demo_sheet_legend(&r->sheet, 0, HEAT_SCALE, "largest channel difference from the reference");
+    demo_sheet_legend(&r->sheet, 1, TWIN_SCALE,
+                      "auto - mvcplane: where the planner split or drew the grid (0: the shader path)");
     snprintf(path, sizeof path, "%s/contact_sheet.png", r->opt.out_dir);
     if (demo_image_write(path, r->sheet.w, r->sheet.h, r->sheet.rgba, err, sizeof err)) {
         fprintf(stderr, "quadgl-demo: %s\n", err);
@@ -340,7 +401,8 @@ static int render_all(run *r)
     }
     if (!r->opt.quiet)
         printf("\nrms, p99, max: 8-bit levels against the exact reference (rotating scene: change from "
-               "vertex order %d to %d)\nwrote %s\n",
+               "vertex order %d to %d);\nauto-pf: auto against the per-fragment picture of its own weights "
+               "(mvcplane: no split, no grid)\nwrote %s\n",
                r->opt.order, (r->opt.order + 1) % 4, path);
     return 0;
 }
@@ -378,7 +440,7 @@ int main(int argc, char **argv)
         rc = (fprintf(stderr, "quadgl-demo-headless: needs --headless --out DIR\n"), 2);
     else if (pick_scenes(&r) || pick_methods(&r))
         rc = 2;
-    else if (make_dir(r.opt.out_dir) || sheet_setup(&r) || !(r.ctx = create_context()))
+    else if (make_dir(r.opt.out_dir) || !(r.ctx = create_context()))
         rc = (fprintf(stderr, "quadgl-demo: cannot set up the headless renderer\n"), 1);
     else if (render_all(&r))
         rc = 1;

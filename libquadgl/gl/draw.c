@@ -235,6 +235,19 @@ static int object_corners(const qgl__verts *v, const size_t idx[4], double p[4][
     return 1;
 }
 
+int qgl__external_planar(const qgl__verts *v, const size_t idx[4])
+{
+    double p[4][3], extent = 0, height = 0;
+    qgl_plane pl;
+    if (!object_corners(v, idx, p) || qgl_plane_frame(p, &pl) != 0)
+        return 0;
+    for (int c = 0; c < 4; c++) {
+        extent = fmax(extent, hypot(pl.corner[c][0], pl.corner[c][1]));
+        height = fmax(height, fabs(pl.height[c]));
+    }
+    return height <= 1e-5 * extent;
+}
+
 /* One attribute (n floats per vertex at a) affine over the quad, or absent (a NULL). */
 static int class_affine(const double p[4][3], const float *a, int n, const size_t idx[4])
 {
@@ -617,9 +630,17 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     if (auto_ && !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q))
         return QGL__P_GRID;
     /* With a corner behind the eye the cover is the clipped split; its rasterized depth is the
-     * one consistent with that clipping, so eq. 4 depth is used for visible quads only. */
-    if (external)
-        return QGL__P_MVC | QGL__P_EXTERNAL | QGL__P_CLIPPED;
+     * one consistent with that clipping, so eq. 4 depth is used for visible quads only. A
+     * planar quad keeps its in-plane weights (the cover in its plane is exact); a non-planar
+     * one takes H&T's screen-space weights of the external quad (sec. 3.2) on every method:
+     * the view-invariant forms need a surface point per pixel, and neither the bilinear patch
+     * (a ray's hits may lie behind the eye) nor the split projected onto the best-fit plane
+     * (it leaves the in-plane quad where that quad is not convex, and the weights extrapolate
+     * without bound) gives one inside the whole screen quad. */
+    if (external) {
+        unsigned char screen = qgl__external_planar(v, idx) ? 0 : QGL__P_SCREEN;
+        return QGL__P_MVC | QGL__P_EXTERNAL | QGL__P_CLIPPED | screen;
+    }
     /* the driver clips quads reaching out of the view volume: see shader.c's persp() */
     return QGL__P_MVC | (planar ? 0 : QGL__P_DEPTH) | (outside ? QGL__P_CLIPPED : 0);
 }
@@ -792,7 +813,7 @@ static unsigned program_key(qgl_context *ctx, const qgl__state *st, qgl_topology
         key |= QGL__K_DEPTH;
     if (path & QGL__P_EXTERNAL)
         key |= QGL__K_DISCARD;
-    if (ctx->method != QGL_METHOD_MVC)
+    if (ctx->method != QGL_METHOD_MVC && !(path & QGL__P_SCREEN))
         key |= QGL__K_PLANE;
     return key;
 }
@@ -817,7 +838,7 @@ static void ffp_key(qgl_context *ctx, const qgl__state *st, qgl_topology topo, u
         k->flags |= QGL__KF_DISCARD;
     if (path & QGL__P_CLIPPED)
         k->flags |= QGL__KF_CLIPPED;
-    if (ctx->method != QGL_METHOD_MVC)
+    if (ctx->method != QGL_METHOD_MVC && !(path & QGL__P_SCREEN))
         k->flags |= QGL__KF_PLANE;
 }
 
@@ -861,7 +882,7 @@ static void draw_subdiv(qgl_context *ctx, const qgl__state *st, const qgl__verts
 
 static void count(qgl_context *ctx, unsigned char path, size_t nq)
 {
-    switch (path & 15) {
+    switch (path & QGL__P_KIND) {
     case QGL__P_SPLIT: ctx->stats.split += nq; break;
     case QGL__P_MVC: ctx->stats.mvc += nq; break;
     case QGL__P_GRID: ctx->stats.subdiv += nq; break;
@@ -926,7 +947,7 @@ void qgl__replay_prim(qgl_context *ctx, GLenum mode, const qgl__verts *v, const 
 static void draw_replay(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,
                         size_t q0, size_t nq, unsigned char path)
 {
-    if ((path & 15) == QGL__P_SUBDIV) {
+    if ((path & QGL__P_KIND) == QGL__P_SUBDIV) {
         ctx->sub.n = 0;
         ctx->sub.mask = v->mask & ~(unsigned)(QGL__A_EDGE | QGL__A_MATERIAL);
         for (size_t q = q0; q < q0 + nq; q++)
@@ -960,7 +981,7 @@ static void draw_glsl120(qgl_context *ctx, const qgl__state *st, const qgl__vert
 
 static int joins_shader_run(unsigned char p)
 {
-    return (p & 15) == QGL__P_MVC && !(p & QGL__P_EXTERNAL);
+    return (p & QGL__P_KIND) == QGL__P_MVC && !(p & QGL__P_EXTERNAL);
 }
 
 /* A short run of quads the split may draw (exact, or too small to differ) next to quads on
@@ -1016,13 +1037,13 @@ static void merge_forms(qgl_context *ctx, qgl_topology topo, unsigned char *path
 {
     const unsigned char forms = QGL__P_DEPTH | QGL__P_CLIPPED;
     for (size_t a = 0; a < nq;) {
-        if ((path[a] & 15) != QGL__P_MVC || (path[a] & QGL__P_EXTERNAL)) {
+        if ((path[a] & QGL__P_KIND) != QGL__P_MVC || (path[a] & QGL__P_EXTERNAL)) {
             a++;
             continue;
         }
         size_t b = a;
         unsigned char all = 0, any_change = 0;
-        while (b < nq && (path[b] & 15) == QGL__P_MVC && !(path[b] & QGL__P_EXTERNAL)) {
+        while (b < nq && (path[b] & QGL__P_KIND) == QGL__P_MVC && !(path[b] & QGL__P_EXTERNAL)) {
             any_change |= b > a && path[b] != path[b - 1];
             all |= path[b++] & forms;
         }
@@ -1051,7 +1072,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     transform_all(st->mvp, v->pos, v->n, ctx->clip);
     for (size_t q = 0; q < nq; q++) {
         unsigned char p = plan_quad(ctx, st, v, topo, q, facts);
-        if ((p & 15) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
+        if ((p & QGL__P_KIND) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
             p = QGL__P_SUBDIV;
         ctx->path[q] = p;
     }
@@ -1117,8 +1138,9 @@ static size_t change_quad(qgl_topology topo, size_t i)
  * it with the primitives around it, as it would have natively). */
 static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
 {
+    int kind = path & QGL__P_KIND;
     return !ctx->has_vao || ((flags & (QGL__DRAW_IMMEDIATE | QGL__DRAW_ARRAYS)) == QGL__DRAW_IMMEDIATE &&
-                             ((path & 15) == QGL__P_SPLIT || (path & 15) == QGL__P_PASS));
+                             (kind == QGL__P_SPLIT || kind == QGL__P_PASS));
 }
 
 /* Where drawing order cannot show (st->order_free), a batch's quads are drawn grouped by path,
@@ -1247,7 +1269,7 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     for (size_t q0 = 0; q0 < nq;) {
         unsigned char p = ctx->path[q0];
         size_t q1 = q0 + 1, limit = nq;
-        if (!replayed(ctx, p, flags) && !(pv_changes && (p & 15) == QGL__P_MVC)) {
+        if (!replayed(ctx, p, flags) && !(pv_changes && (p & QGL__P_KIND) == QGL__P_MVC)) {
             /* its quads share the material in force at the first */
             while (ctx->chg_next < nchg && change_quad(topo, chg[ctx->chg_next].vertex) <= q0)
                 apply_changes(ctx, chg[ctx->chg_next].vertex + 1);
@@ -1257,21 +1279,21 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
         while (q1 < nq && q1 < limit && ctx->path[q1] == p)
             q1++;
         count(ctx, p, q1 - q0);
-        if ((p & 15) == QGL__P_MVC && ctx->shader_level == 120)
+        if ((p & QGL__P_KIND) == QGL__P_MVC && ctx->shader_level == 120)
             draw_glsl120(ctx, &st, v, topo, q0, q1 - q0, p, &bound);
         else if (replayed(ctx, p, flags)) {
             if (bound != st.program)
                 ctx->gl.UseProgram((GLuint)(bound = st.program));
             draw_replay(ctx, &st, v, topo, q0, q1 - q0, p);
-        } else if ((p & 15) == QGL__P_MVC) {
+        } else if ((p & QGL__P_KIND) == QGL__P_MVC) {
             if (!draw_mvc(ctx, &st, v, topo, q0, q1 - q0, p, &bound)) {
                 recount_as_fallback(ctx, q1 - q0);
                 draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
             }
-        } else if ((p & 15) == QGL__P_GRID) {
+        } else if ((p & QGL__P_KIND) == QGL__P_GRID) {
             if (!qgl__grid_draw(ctx, &st, v, topo, q0, q1 - q0, &bound))
                 draw_split(ctx, topo, q0, q1 - q0, st.program, &bound);
-        } else if ((p & 15) == QGL__P_SUBDIV)
+        } else if ((p & QGL__P_KIND) == QGL__P_SUBDIV)
             draw_subdiv(ctx, &st, v, topo, q0, q1 - q0, st.program, &bound);
         else
             draw_split(ctx, topo, q0, q1 - q0, st.program, &bound);

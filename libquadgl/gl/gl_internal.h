@@ -518,9 +518,11 @@ struct qgl_context {
 
 /* Paths a quad can take: SUBDIV is the CPU fallback of fallback.c, GRID the mean value grid
  * of subdiv.c. */
-enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3, QGL__P_GRID = 4 };
-/* Bits on top of QGL__P_MVC in the per-quad path byte. */
-enum { QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5, QGL__P_CLIPPED = 1 << 7 };
+enum { QGL__P_SPLIT = 0, QGL__P_MVC = 1, QGL__P_SUBDIV = 2, QGL__P_PASS = 3, QGL__P_GRID = 4, QGL__P_KIND = 7 };
+/* Bits on top of QGL__P_MVC in the per-quad path byte (the path itself is path & QGL__P_KIND).
+ * SCREEN: H&T's screen-space weights whatever the method (a non-planar quad with a corner
+ * behind the eye, see plan_quad). */
+enum { QGL__P_SCREEN = 1 << 3, QGL__P_DEPTH = 1 << 4, QGL__P_EXTERNAL = 1 << 5, QGL__P_CLIPPED = 1 << 7 };
 /* While planning: a split quad that the shader path would draw the same (AUTO: exact, or too
  * small to differ), free to join a neighbouring shader-path run. */
 enum { QGL__P_EITHER = 1 << 6 };
@@ -582,6 +584,11 @@ int qgl__native_path(qgl_context *ctx, const qgl__state *st, unsigned all_facts)
 void qgl__count_path(qgl_context *ctx, unsigned char path, size_t nq);
 /* draw.c: v drawn by the driver's immediate mode as one primitive, glMaterial calls inline. */
 void qgl__replay_prim(qgl_context *ctx, GLenum mode, const qgl__verts *v, const qgl__change *chg, size_t nchg);
+/* draw.c: whether a quad with a corner behind the eye keeps its in-plane weights: its object
+ * corners are finite and within 1e-5 of its extent from their plane (the plane frame's
+ * heights, which unlike qgl_is_planar's distance between the diagonals' lines stay well
+ * conditioned on a bow-tie, whose diagonals may be nearly parallel). */
+int qgl__external_planar(const qgl__verts *v, const size_t idx[4]);
 
 /* mesh.c: a display list's primitives of any mode, drawn many times (see there). */
 typedef struct qgl__mesh_prim {
@@ -648,6 +655,19 @@ int qgl__glsl120_init(qgl_context *ctx);
 void qgl__glsl120_free(qgl_context *ctx);
 int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
                       size_t nq, unsigned key, GLint *bound);
+
+/* external.c: the visible part of a quad with a corner behind the eye (clip corners, any
+ * sign of w) on its split along diagonal diag (0: corners 0-2, 1: 1-3), cut by its screen
+ * quad (H&T's external quad, eq. 12 in the projective plane) and the view volume: convex
+ * pieces, each vertex as the four corner weights of its clip (and homogeneous object)
+ * position. Returns how many, at most max (QGL__PIECES_MAX always suffices). */
+#define QGL__PIECE_VERTS 16
+#define QGL__PIECES_MAX 16
+typedef struct qgl__piece {
+    int n;
+    double cw[QGL__PIECE_VERTS][4];
+} qgl__piece;
+int qgl__external_pieces(const double clip[4][4], int diag, qgl__piece *out, int max);
 
 /* fallback.c: append the subdivision of quad q of v to out (same attributes as v). */
 int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo,

@@ -16,7 +16,20 @@
  *     a small shift of a check edge costs full-contrast pixels.)
  * And for the rotating-order scene: turning the vertex order by one changes the native
  * picture (RMS > 10) and leaves mvc's unchanged (RMS < 1). The contact sheet must exist,
- * hold one row per scene, and not be blank. */
+ * hold one row per scene, and not be blank.
+ * Auto against its per-fragment twin (SCENE__auto__mvcplane.png: the GL helper's MVC_PLANE,
+ * the weights auto uses, with no split or grid): the two are the same program wherever the
+ * planner kept the shader path, and where it chose the split or the mean value grid by its
+ * budget they may differ by what the budget allows. Colours: half an 8-bit level before
+ * rounding, so 1 level between the two rounded pictures. Texture coordinates: 1/32 texel per
+ * coordinate; bilinear filtering changes by at most D per texel along each axis, D the largest
+ * difference between neighbouring texels, so 1 + D / 16 levels (the checker's D is 204: 13
+ * levels; a cube map's D is taken as 255). Quads the planner splits because their bounding
+ * box is under 4 px^2 (its invisible-area rule, which claims no error bound: a sphere's pole
+ * quads span many texels in two pixels) are masked out with a pixel's margin. At 128 x 128
+ * the planner splits little, so the finest sphere is also rendered at its own 512 x 512, where
+ * it splits the equator's bands by its budget. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +41,7 @@
 #define SIZE 128
 #define SPLIT_P99 4
 #define SPLIT_RMS 2.0
+#define INVISIBLE_AREA 4.0 /* px^2: the planner's default invisible_area_px */
 
 static int failures;
 
@@ -91,6 +105,109 @@ static void check_scene(const char *out, const qgl_sw_scene *s, int have_mvc)
     dt_image_free(&native);
     dt_image_free(&sw_exact);
     dt_image_free(&sw_split);
+}
+
+/* The levels auto may differ from its twin by where the planner's budget chose the split or
+ * the grid (see the top). */
+static double twin_tolerance(const qgl_sw_scene *s)
+{
+    if (s->shading == QGL_SW_SHADE_COLOR)
+        return 1;
+    if (s->shading != QGL_SW_SHADE_TEXTURE || !s->texture.texels)
+        return 1 + 255.0 / 16;
+    const qgl_sw_texture *t = &s->texture;
+    double d = 0;
+    for (int y = 0; y < t->height; y++)
+        for (int x = 0; x < t->width; x++)
+            for (int c = 0; c < t->channels; c++) {
+                const float *p = t->texels + ((size_t)y * t->width + x) * t->channels + c;
+                float right = t->texels[((size_t)y * t->width + (x + 1) % t->width) * t->channels + c];
+                float up = t->texels[((size_t)((y + 1) % t->height) * t->width + x) * t->channels + c];
+                d = fmax(d, fmax(fabs(*p - right), fabs(*p - up)));
+            }
+    return 1 + ceil(d * 255) / 16;
+}
+
+/* Pixels of quads the invisible-area rule splits, with a pixel's margin. */
+static unsigned char *invisible_mask(const qgl_sw_scene *s, int w, int h)
+{
+    float *clip = NULL, *attr = NULL, *object = NULL;
+    unsigned char *mask = calloc((size_t)w * h, 1);
+    if (!mask || qgl_sw_scene_arrays(s, 0, &clip, &attr, &object) < 0) {
+        free(mask);
+        return NULL;
+    }
+    for (int q = 0; q < s->nquads; q++) {
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        int front = 1;
+        for (int i = 0; i < 4; i++) {
+            const float *c = clip + 16 * q + 4 * i;
+            front &= c[3] > 0;
+            for (int k = 0; k < 2; k++) {
+                double px = (c[k] / c[3] + 1) * 0.5 * (k ? h : w);
+                lo[k] = fmin(lo[k], px), hi[k] = fmax(hi[k], px);
+            }
+        }
+        if (!front || (hi[0] - lo[0]) * (hi[1] - lo[1]) >= INVISIBLE_AREA)
+            continue;
+        for (int y = (int)fmax(0, floor(lo[1]) - 1); y <= (int)fmin(h - 1, ceil(hi[1]) + 1); y++)
+            for (int x = (int)fmax(0, floor(lo[0]) - 1); x <= (int)fmin(w - 1, ceil(hi[0]) + 1); x++)
+                mask[(size_t)y * w + x] = 1;
+    }
+    free(clip);
+    free(attr);
+    free(object);
+    return mask;
+}
+
+static void check_twin(const char *out, const qgl_sw_scene *s)
+{
+    dt_image a, b;
+    if (load_picture(out, s->name, "auto", &a) || load_picture(out, s->name, "auto__mvcplane", &b)) {
+        DT_CHECK(0, "%s: auto's twin picture missing", s->name);
+        return;
+    }
+    unsigned char *mask = invisible_mask(s, a.w, a.h);
+    double tol = twin_tolerance(s);
+    int worst = 0, differ = 0, masked = 0, over = 0;
+    for (size_t i = 0; mask && i < (size_t)a.w * a.h; i++) {
+        int d = 0;
+        for (int k = 0; k < 3; k++)
+            d = abs(a.rgba[4 * i + k] - b.rgba[4 * i + k]) > d ? abs(a.rgba[4 * i + k] - b.rgba[4 * i + k]) : d;
+        if (mask[i]) {
+            masked += d > 0;
+            continue;
+        }
+        differ += d > 0;
+        over += d > tol;
+        worst = d > worst ? d : worst;
+    }
+    printf("  %-22s auto vs mvcplane: %d pixels differ (worst %d, tolerance %.1f levels), %d more under the "
+           "invisible-area rule\n",
+           s->name, differ, worst, tol, masked);
+    DT_CHECK(mask && over == 0, "%s: auto differs from its per-fragment twin by %d levels (tolerance %.1f)", s->name,
+             worst, tol);
+    free(mask);
+    dt_image_free(&a);
+    dt_image_free(&b);
+}
+
+/* The finest sphere at its own size, auto only, against its twin. */
+static void check_sphere_at_size(const char *demo, const char *out, const char *log)
+{
+    char dir[600], path[1024], err[512];
+    snprintf(dir, sizeof dir, "%s/sphere", out);
+    char *cmd[] = {(char *)demo, "--headless", "--out", dir, "--scene", "sphere_100x40", "--method", "auto",
+                   "--quiet", NULL};
+    DT_CHECK(dt_run(cmd, log) == 0, "quadgl-demo --scene sphere_100x40 failed");
+    snprintf(path, sizeof path, "%s/sphere_100x40.scene", DEMO_SCENE_DIR);
+    qgl_sw_scene *s = NULL;
+    qgl_sw_scene_load_desc desc = {demo_image_load_texture, NULL};
+    if (qgl_sw_scene_load(path, &desc, &s, err, sizeof err) == 0)
+        check_twin(dir, s);
+    else
+        DT_CHECK(0, "%s", err);
+    qgl_sw_scene_free(s);
 }
 
 /* The rotating-order scene's pictures are at order 1; the plain scene's at order 0. */
@@ -165,6 +282,8 @@ int main(int argc, char **argv)
             DT_CHECK(0, "%s", err);
         } else {
             check_scene(out, s, have_mvc);
+            if (have_mvc)
+                check_twin(out, s);
             if (!strcmp(s->name, "bailey_rbgr"))
                 check_rotation(out, s, have_mvc);
             rows++;
@@ -173,6 +292,8 @@ int main(int argc, char **argv)
         free(names[i]);
     }
     free(names);
+    if (have_mvc)
+        check_sphere_at_size(argv[1], out, log);
     dt_image sheet;
     snprintf(probe, sizeof probe, "%s/contact_sheet.png", out);
     if (dt_image_read(probe, &sheet) == 0) {
