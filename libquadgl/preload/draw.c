@@ -106,11 +106,18 @@ static qgl_topology pl_topology(const pl_prim *p)
 
 /* p through the GL path, its materials applied where they fall (or the driver draws it all,
  * if the GL path refuses). */
+/* From this many vertices on, the split quads of a primitive are drawn from our arrays (one
+ * upload, one draw) rather than handed back to the driver's immediate mode call by call. */
+#define PL_ARRAYS_FROM 64
+
 static void pl_draw_gl(qgl_context *qgl, pl_prim *p)
 {
     qgl__verts v = p->v;
     v.mask &= ~(unsigned)QGL__A_MATERIAL;
-    if (qgl__draw_batch(qgl, &v, pl_topology(p), NULL, p->from_arrays ? 0 : QGL__DRAW_IMMEDIATE, p->mat, p->nmat) < 0) {
+    unsigned flags = p->from_arrays ? 0 : QGL__DRAW_IMMEDIATE;
+    if (!p->from_arrays && !p->nmat && v.n >= PL_ARRAYS_FROM)
+        flags |= QGL__DRAW_ARRAYS; /* materials inside are given between vertices: replayed */
+    if (qgl__draw_batch(qgl, &v, pl_topology(p), NULL, flags, p->mat, p->nmat) < 0) {
         size_t mat = 0;
         pl_log(PL_LOG_DEBUG, "the GL path refused %zu quads; the driver draws them", pl_prim_quads(p));
         pl_replay_range(p, 0, p->v.n, &mat);
@@ -145,9 +152,6 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
 
 /* Vertices a batch may hold: what an immediate-mode chunk holds. */
 #define PL_BATCH_MAX 16384
-/* From this many vertices on, the batch's split quads are drawn from our arrays (one upload,
- * one draw) rather than handed back to the driver's immediate mode call by call. */
-#define PL_BATCH_ARRAYS 64
 
 /* Vertices [from, to) of b take the current value of slot a (QGL__NATTR: the edge flag). */
 static void pl_batch_fill(pl_ctx *x, qgl__verts *v, int a, size_t from, size_t to)
@@ -258,7 +262,7 @@ void pl_batch_flush(pl_ctx *x)
     qgl_context *qgl = pl_ctx_qgl(x);
     qgl__verts v = b->v;
     v.n = n;
-    unsigned flags = QGL__DRAW_IMMEDIATE | (n >= PL_BATCH_ARRAYS ? QGL__DRAW_ARRAYS : 0);
+    unsigned flags = QGL__DRAW_IMMEDIATE | (n >= PL_ARRAYS_FROM ? QGL__DRAW_ARRAYS : 0);
     if (!qgl || qgl__draw_batch(qgl, &v, QGL_QUADS, NULL, flags, NULL, 0) < 0) {
         b->mode = GL_QUADS;
         b->v.n = n;
