@@ -14,6 +14,8 @@
  * times the residual of f along n_i = m_i w_max / w_i (unit m), which is the planner's gain
  * machinery (qgl__gain_limit) with this n. The coarsest grid within budget is taken, in AUTO
  * only where the calibrated cost model (calibrate.c) finds it cheaper than the shader path.
+ * Under the view-invariant methods only planar quads take it, laid out and weighed in their
+ * own plane (inplane_corners), so the grid's picture is as view-invariant as the shader path's.
  * Drawing: per quad, the vertices' perspective weights (the core, vectorised over the
  * vertices), then position and attributes as those weights' combinations of the corners'
  * (the homogeneous object point maps exactly to the grid point, its depth is eq. 4's, on the
@@ -131,28 +133,58 @@ static double screen_area(const double v[4][2], const GLint vp[4])
     return a < whole ? a : whole;
 }
 
+/* The view-invariant methods weigh a planar quad in its own plane: its grid is laid out there
+ * (the in-plane corners with w = 1, whose screen weights are the in-plane mean value weights),
+ * and the rasterizer's perspective-correct interpolation between the vertices is linear on the
+ * surface, so the bound holds in the plane along the in-plane corners' dependency, whatever
+ * the view. The corners' object w must be 1 (the vertices are the weights' combinations of the
+ * object positions). 0 when the quad spans no plane. */
+static int inplane_corners(const qgl__verts *v, const size_t idx[4], double out[4][2])
+{
+    double p[4][3];
+    qgl_plane pl;
+    for (int c = 0; c < 4; c++) {
+        const float *q = v->pos + 4 * idx[c];
+        if (q[3] != 1)
+            return 0;
+        for (int k = 0; k < 3; k++)
+            p[c][k] = q[k];
+    }
+    if (qgl_plane_frame(p, &pl) != 0)
+        return 0;
+    memcpy(out, pl.corner, sizeof pl.corner);
+    return 1;
+}
+
+static int inplane(const qgl_context *ctx)
+{
+    return ctx->method != QGL_METHOD_MVC;
+}
+
 int qgl__grid_plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                    const double *clip[4], int planar, size_t q)
 {
     int forced = ctx->method == QGL_METHOD_SUBDIV;
-    if ((!forced && !(ctx->costs && ctx->costs->valid)) || !state_allows(ctx, st, planar))
+    if ((!forced && !(ctx->costs && ctx->costs->valid)) || !state_allows(ctx, st, planar) ||
+        (inplane(ctx) && !planar)) /* a non-planar quad's view-invariant form is its patch's */
         return 0;
-    double sv[4][2], m[4], n[4], wmax = 0, hw = 0.5 * st->viewport[2], hh = 0.5 * st->viewport[3];
+    double sv[4][2], pv[4][2], m[4], n[4], wmax = 0, hw = 0.5 * st->viewport[2], hh = 0.5 * st->viewport[3];
     for (int i = 0; i < 4; i++) {
         if (!(clip[i][3] > 0))
             return 0;
         sv[i][0] = clip[i][0] / clip[i][3] * hw, sv[i][1] = clip[i][1] / clip[i][3] * hh;
         wmax = clip[i][3] > wmax ? clip[i][3] : wmax;
     }
-    if (!qgl_mvcgrid_fits(sv))
+    const double (*shape)[2] = inplane(ctx) ? (const double(*)[2])pv : (const double(*)[2])sv;
+    if ((inplane(ctx) && !inplane_corners(v, idx, pv)) || !qgl_mvcgrid_fits(shape))
         return 0;
     double area = screen_area(sv, st->viewport);
     if (!forced && !qgl__grid_cheaper(ctx, area, 0))
         return 0; /* not even the coarsest grid pays: no need to judge the error */
-    if (!screen_dependency(sv, m))
+    if (!screen_dependency(shape, m))
         return 0;
     for (int i = 0; i < 4; i++)
-        n[i] = m[i] * wmax / clip[i][3];
+        n[i] = inplane(ctx) ? m[i] : m[i] * wmax / clip[i][3];
     int g = qgl_mvcgrid_choose(qgl__gain_limit(ctx, st, v, idx, n));
     if (g < 0 && forced)
         g = qgl_mvcgrid_count() - 1;
@@ -202,13 +234,19 @@ static void combine(float *dst, int stride, const float *src, int size, const si
 
 /* Weights of grid g's vertices for the quad at idx: the corners' own, then the interior's; a
  * quad the core refuses after all (it was planned on the same numbers) becomes the split. */
-static const qgl_mvcgrid *quad_weights(qgl_context *ctx, const qgl__state *st, const size_t idx[4], int g)
+static const qgl_mvcgrid *quad_weights(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
+                                       const size_t idx[4], int g)
 {
     struct qgl__grid *gr = ctx->grid;
     const qgl_mvcgrid *grid = qgl_mvcgrid_at(g);
-    double c[4][4];
+    double c[4][4], pv[4][2];
+    int plane = inplane(ctx) && inplane_corners(v, idx, pv);
     for (int i = 0; i < 4; i++) {
         const double *x = ctx->clip + 4 * idx[i];
+        if (plane) {
+            c[i][0] = pv[i][0], c[i][1] = pv[i][1], c[i][2] = 0, c[i][3] = 1;
+            continue;
+        }
         c[i][0] = x[0] * 0.5 * st->viewport[2], c[i][1] = x[1] * 0.5 * st->viewport[3];
         c[i][2] = x[2], c[i][3] = x[3];
     }
@@ -224,7 +262,7 @@ static int emit_quad(qgl_context *ctx, const qgl__state *st, const qgl__verts *v
                      int *nidx)
 {
     struct qgl__grid *gr = ctx->grid;
-    const qgl_mvcgrid *grid = quad_weights(ctx, st, idx, g);
+    const qgl_mvcgrid *grid = quad_weights(ctx, st, v, idx, g);
     static const uint16_t split[2][3] = {{0, 1, 2}, {0, 2, 3}};
     int nv = grid ? grid->nverts : 4, nt = grid ? grid->ntris : 2;
     const uint16_t (*tri)[3] = grid ? (const uint16_t(*)[3])grid->tri : split;

@@ -2,10 +2,11 @@
  *
  * Budget: random quads (convex, concave, bow-tie, a corner behind the eye, tiny and window-
  * sized, in perspective, planar and not) with random corner colours are drawn in AUTO with
- * costs that make the grid cheap (QUADGL_COSTS) and in MVC; wherever the planner chose the
- * grid, no pixel may differ from the shader path's by more than one 8-bit level (the budget
- * is half a level before rounding), and the grid must have been chosen for some quads and
- * refused for the concave, bow-tie and behind-the-eye ones. Seams: two quads sharing an edge,
+ * costs that make the grid cheap (QUADGL_COSTS) and in MVC_PLANE (AUTO's weights per
+ * fragment); wherever the planner chose the grid, no pixel may differ from the shader path's
+ * by more than one 8-bit level (the budget is half a level before rounding), and the grid must
+ * have been chosen for some quads and refused for the concave, bow-tie, behind-the-eye and
+ * non-planar ones (AUTO weighs planar quads in their plane, and its grid with them). Seams: two quads sharing an edge,
  * one drawn as the grid (coarse and fine: little and much colour variation) and the other by
  * the shader path, the split or another grid, with additive blending: every pixel of the
  * union is hit exactly once, and across the shared edge the colour steps by no more than its
@@ -48,14 +49,16 @@ static void perspective(void)
     glTranslatef(0, 0, -2.5f);
 }
 
-/* A random quad of one kind: 0 convex, 1 concave, 2 bow-tie, 3 behind the eye, 4 tiny, 5 large. */
-static void random_quad(int kind, float p[4][3])
+/* A random quad of one kind: 0 convex, 1 concave, 2 bow-tie, 3 behind the eye, 4 tiny, 5 large;
+ * planar (on a random tilted plane) or not. */
+static void random_quad(int kind, int planar, float p[4][3])
 {
     double cx = rnd() - 0.5, cy = rnd() - 0.5, r = kind == 4 ? 0.02 : kind == 5 ? 1.2 : 0.2 + 0.4 * rnd();
+    double sx = 0.6 * (rnd() - 0.5), sy = 0.6 * (rnd() - 0.5);
     for (int i = 0; i < 4; i++) {
         double a = i * M_PI / 2 + (rnd() - 0.5) * 0.9, rr = r * (0.7 + 0.6 * rnd());
         p[i][0] = (float)(cx + rr * cos(a)), p[i][1] = (float)(cy + rr * sin(a));
-        p[i][2] = (float)(0.3 * (rnd() - 0.5));
+        p[i][2] = planar ? (float)(sx * p[i][0] + sy * p[i][1]) : (float)(0.3 * (rnd() - 0.5));
     }
     if (kind == 1) /* corner 2 pulled inside past the diagonal 1-3 */
         p[2][0] = (float)(0.8 * cx + 0.2 * p[0][0]), p[2][1] = (float)(0.8 * cy + 0.2 * p[0][1]);
@@ -69,12 +72,12 @@ static void random_quad(int kind, float p[4][3])
 
 static void budget(th_ctx *t)
 {
-    int chosen[6] = {0}, tried[6] = {0}, worst = 0;
+    int chosen[6] = {0}, tried[6] = {0}, worst = 0, nonplanar = 0;
     perspective();
-    for (int n = 0; n < 120; n++) {
-        int kind = n % 6;
+    for (int n = 0; n < 240; n++) {
+        int kind = n % 6, planar = n / 6 % 2;
         float p[4][3], col[4][4];
-        random_quad(kind, p);
+        random_quad(kind, planar, p);
         double amp = rnd() < 0.5 ? 0.05 : 1.0; /* gentle or wild colours: fine or coarse grids */
         for (int i = 0; i < 4; i++)
             for (int c = 0; c < 4; c++)
@@ -82,7 +85,7 @@ static void budget(th_ctx *t)
         unsigned char *img[2];
         qgl_gl_stats_t st;
         for (int m = 0; m < 2; m++) {
-            qgl_gl_set_method(t->qgl, m ? QGL_METHOD_MVC : QGL_METHOD_AUTO);
+            qgl_gl_set_method(t->qgl, m ? QGL_METHOD_MVC_PLANE : QGL_METHOD_AUTO);
             qgl_gl_reset_stats(t->qgl);
             glClear(GL_COLOR_BUFFER_BIT);
             draw_quad(p, col);
@@ -92,6 +95,7 @@ static void budget(th_ctx *t)
             img[m] = th_snapshot(t);
         }
         tried[kind]++;
+        nonplanar += !planar && st.subdiv;
         if (st.subdiv == 1) {
             chosen[kind]++;
             for (int i = 0; i < W * H * 4; i++) {
@@ -112,6 +116,8 @@ static void budget(th_ctx *t)
            chosen[0], tried[0], chosen[1], tried[1], chosen[2], tried[2], chosen[3], tried[3], chosen[4], tried[4],
            chosen[5], tried[5], worst);
     th_check(chosen[0] > 0 && chosen[5] > 0, "the grid was never chosen for convex or large quads");
+    th_check(nonplanar == 0, "the grid was chosen for %d non-planar quads (their view-invariant form is the patch)",
+             nonplanar);
     th_check(chosen[1] == 0 && chosen[2] == 0 && chosen[3] == 0, "the grid was chosen for a concave, bow-tie or "
              "behind-the-eye quad");
 }
