@@ -309,14 +309,16 @@ static int given(struct qgl__costs *c)
     return 1;
 }
 
-void qgl__calibrate(qgl_context *ctx)
+void qgl__costs_given(qgl_context *ctx)
 {
     static struct qgl__costs from_env;
-    if (given(&from_env)) {
+    if (given(&from_env))
         ctx->costs = &from_env;
-        return;
-    }
-    if (ctx->shader_level != 150 || !ctx->has_vao || !have_entry_points(&ctx->gl))
+}
+
+void qgl__calibrate(qgl_context *ctx)
+{
+    if (ctx->costs || ctx->shader_level != 150 || !ctx->has_vao || !have_entry_points(&ctx->gl))
         return;
     const char *r = (const char *)ctx->gl.GetString(GL_RENDERER), *ver = (const char *)ctx->gl.GetString(GL_VERSION);
     char name[192];
@@ -353,6 +355,8 @@ QGL_API void qgl_gl_costs(const qgl_context *ctx, qgl_gl_costs_t *out)
     if (!out)
         return;
     memset(out, 0, sizeof *out);
+    if (ctx)
+        qgl__ready((qgl_context *)ctx);
     const struct qgl__costs *c = ctx ? ctx->costs : NULL;
     if (!c)
         return;

@@ -2,12 +2,13 @@
  *
  * A context is created inside the application's current GL context. It resolves the GL entry
  * points, reads what the driver offers (version, profile, geometry shaders, vertex array
- * objects, the quads' provoking vertex rule), creates its own vertex array object and
- * buffers, and compiles a first program to prove the shader path works (the geometry shader
- * path on GL 3.2, else the GLSL 1.20 one of glsl120.c); when neither compiles the context
- * keeps working on the CPU fallback alone. Then the driver's costs are measured for the
- * planner (calibrate.c). Options come from the desc, then from the environment
- * (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
+ * objects, the quads' provoking vertex rule) and creates its own vertex array object and
+ * buffers. Only when a quad first needs smoothing (qgl__ready) does it compile a first program
+ * to prove the shader path works (the geometry shader path on GL 3.2, else the GLSL 1.20 one
+ * of glsl120.c; when neither compiles the context keeps working on the CPU fallback alone) and
+ * measure the driver's costs for the planner (calibrate.c): a compile costs the driver
+ * megabytes, which a program whose quads all split never needs. Options come from the desc,
+ * then from the environment (QUADGL_METHOD, QUADGL_TOLERANCE), then from defaults. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -116,12 +117,12 @@ static int probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
 }
 
 /* The best shader path that compiles here: geometry shaders, else GLSL 1.20, else none. */
-static void choose_shader_path(qgl_context *ctx, int glsl120_ok)
+static void choose_shader_path(qgl_context *ctx)
 {
     if (ctx->shader_level == 150 && !qgl__program(ctx, 0))
+        ctx->shader_level = ctx->glsl120_ok ? 120 : 0;
+    if (ctx->shader_level == 120 && !qgl__glsl120_init(ctx))
         ctx->shader_level = 0;
-    if (ctx->shader_level == 0 && glsl120_ok && qgl__glsl120_init(ctx))
-        ctx->shader_level = 120;
 }
 
 QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
@@ -144,13 +145,26 @@ QGL_API qgl_context *qgl_gl_create(const qgl_gl_desc *desc)
     if (!d.split_error && se && end != se && se_value != 0)
         ctx->split_error = se_value;
     ctx->exclusive = d.assume_exclusive != 0;
-    int glsl120_ok = probe_driver(ctx, &d);
+    ctx->glsl120_ok = probe_driver(ctx, &d);
+    if (!ctx->shader_level && ctx->glsl120_ok)
+        ctx->shader_level = 120;
+    qgl__costs_given(ctx);
     if (ctx->has_vao)
         create_objects(ctx);
-    choose_shader_path(ctx, glsl120_ok);
-    qgl__calibrate(ctx);
-    memset(&ctx->stats, 0, sizeof ctx->stats); /* the calibration's draws are not the program's */
     return ctx;
+}
+
+int qgl__ready(qgl_context *ctx)
+{
+    int level = ctx->shader_level;
+    if (ctx->ready)
+        return 0;
+    ctx->ready = 1;
+    qgl_gl_stats_t before = ctx->stats;
+    choose_shader_path(ctx);
+    qgl__calibrate(ctx);
+    ctx->stats = before; /* the calibration's draws are not the program's */
+    return level != ctx->shader_level;
 }
 
 QGL_API void qgl_gl_destroy(qgl_context *ctx)
@@ -200,6 +214,8 @@ QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx)
 
 QGL_API int qgl_gl_shader_level(const qgl_context *ctx)
 {
+    if (ctx)
+        qgl__ready((qgl_context *)ctx); /* the level a program compiled at, not the promised one */
     return ctx ? ctx->shader_level : 0;
 }
 

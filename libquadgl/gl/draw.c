@@ -1082,6 +1082,15 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     return 1;
 }
 
+/* Whether a plan made before the shader path was ready draws a quad smooth. */
+static int needs_shaders(const unsigned char *path, size_t nq)
+{
+    for (size_t q = 0; q < nq; q++)
+        if ((path[q] & QGL__P_KIND) == QGL__P_MVC || (path[q] & QGL__P_KIND) == QGL__P_GRID)
+            return 1;
+    return 0;
+}
+
 /* A retained batch the driver can draw as the application would, when this state plans every
  * quad the driver's way (polygon mode line/point, select/feedback, method SPLIT, or the split
  * exact for all); counted as that path. */
@@ -1250,6 +1259,14 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
         return (int)nq;
     if (!plan(ctx, &st, v, topo, nq, facts))
         return -1;
+    if (!ctx->ready && needs_shaders(ctx->path, nq)) {
+        if (qgl__ready(ctx)) {
+            qgl__state_dirty(ctx, QGL__D_ALL);
+            qgl__query_state(ctx, &st);
+        }
+        if (!plan(ctx, &st, v, topo, nq, facts)) /* with the costs, at the level compiled */
+            return -1;
+    }
     if (st.order_free && topo == QGL_QUADS && !nchg && group_by_path(ctx, v, nq))
         v = &ctx->grouped;
     ctx->chg = chg, ctx->nchg = nchg, ctx->chg_next = 0, ctx->chg_verts = v;

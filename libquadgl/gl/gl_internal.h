@@ -453,7 +453,10 @@ struct qgl_context {
     float split_error;        /* desc.split_error: scale of the invisible-split budgets, 0 = 1,
                                  negative = only exact splits (and the area rule) */
     int version;              /* GL version * 10 (e.g. 45) */
-    int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c) */
+    int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c); before the first smooth quad
+                                 the level the driver promises, not yet compiled (ready) */
+    int ready;                /* context.c: the shader path compiled and the costs measured */
+    int glsl120_ok;
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
     int quads_follow_pv;
     int has_arb_programs;
@@ -712,6 +715,13 @@ struct qgl__costs {
     double ms, warm_ms, mvc_quad, mvc_px, split_px, grid_tri; /* milliseconds; the others nanoseconds */
 };
 void qgl__calibrate(qgl_context *ctx);
+/* The costs QUADGL_COSTS gives, read when the context is made (none: measured when ready). */
+void qgl__costs_given(qgl_context *ctx);
+/* context.c: at the first quad that needs it (not when the context is made, so that a program
+ * whose quads all split never pays a compile's memory and time): the shader path compiled,
+ * falling back to GLSL 1.20 or none, and the costs measured. Returns whether the shader
+ * level changed (the state must be read again). */
+int qgl__ready(qgl_context *ctx);
 int qgl__grid_cheaper(const qgl_context *ctx, double area_px, int g);
 
 /* Per-thread current context (read directly on the immediate-mode hot path). */

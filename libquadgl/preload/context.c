@@ -188,7 +188,7 @@ qgl_context *pl_ctx_qgl(pl_ctx *x)
         if (!x->qgl)
             pl_log(PL_LOG_WARN, "the GL path could not start in this context; quads go to the driver");
         else
-            pl_log(PL_LOG_INFO, "GL path ready (shader level %d)", qgl_gl_shader_level(x->qgl));
+            pl_log(PL_LOG_INFO, "GL path ready");
         qgl_gl_make_current(x->qgl);
     }
     if (PL_UNLIKELY(__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)))

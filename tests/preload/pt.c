@@ -134,7 +134,7 @@ static int pt_render_native(const char *name, pt_run *r)
     return (rc == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0) ? 0 : -1;
 }
 
-static int pt_preloaded(void)
+int pt_preloaded(void)
 {
     Dl_info info;
     void *fn = dlsym(RTLD_DEFAULT, "glBegin");

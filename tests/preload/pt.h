@@ -55,6 +55,9 @@ int pt_main(int argc, char **argv, const pt_scene *scenes, int nscenes);
 enum { PT_QUADS, PT_MVC, PT_SPLIT, PT_SUBDIV, PT_PASS, PT_DRAWS, PT_UPLOADS, PT_FRAMES, PT_NCOUNTERS };
 int pt_counters(uint64_t out[PT_NCOUNTERS]);
 
+/* Whether this run goes through libquadgl-preload.so (not the native child). */
+int pt_preloaded(void);
+
 /* For scenes: an orthographic identity view, cleared to opaque black. */
 void pt_begin_frame(void);
 
