@@ -499,12 +499,43 @@ static void scene_batch_draws(pt_run *r)
     r->min_quads = 18 + 3 * 7;
 }
 
-/* Strip k of three: two non-affine quads in a column of the 64 x 64 window. */
-static void list_strip(int k, float dx, float out[6][2])
+/* Strip k of three: two non-affine quads in a column of the 64 x 64 window, its vertex i
+ * coloured SC[(i + k + shift) % 6]. */
+static void column_strip(int k, float out[6][2])
 {
     for (int i = 0; i < 6; i++) {
-        out[i][0] = -0.9f + 0.6f * (float)k + (i & 1 ? 0.45f : 0.0f) + (i == 2 ? 0.1f : 0.0f) + dx;
+        out[i][0] = -0.9f + 0.6f * (float)k + (i & 1 ? 0.45f : 0.0f) + (i == 2 ? 0.1f : 0.0f);
         out[i][1] = -0.9f + 0.4f * (float)(i / 2) + (i == 3 ? 0.15f : 0.0f);
+    }
+}
+
+static void draw_column_strip(int k, int shift)
+{
+    float st[6][2];
+    column_strip(k, st);
+    glBegin(GL_QUAD_STRIP);
+    for (int i = 0; i < 6; i++) {
+        glColor4fv(SC[(i + k + shift) % 6]);
+        glVertex2fv(st[i]);
+    }
+    glEnd();
+}
+
+/* The quads of the three strips, dy higher, smooth or flat (the provoking vertex 2k+3). */
+static void expect_column_strips(pt_run *r, int shift, float dy, int flat)
+{
+    static const int order[4] = {0, 1, 3, 2};
+    float st[6][2], v[4][2], c[4][4];
+    for (int k = 0; k < 3; k++) {
+        column_strip(k, st);
+        for (int q = 0; q < 2; q++) {
+            for (int i = 0; i < 4; i++) {
+                int j = 2 * q + order[i];
+                v[i][0] = st[j][0], v[i][1] = st[j][1] + dy;
+                memcpy(c[i], SC[(j + k + shift) % 6], sizeof c[i]);
+            }
+            pt_expect(r, v, c, flat ? 3 : 0);
+        }
     }
 }
 
@@ -513,59 +544,32 @@ static void list_strip(int k, float dx, float out[6][2])
  * and under flat shading the provoking vertex's), in a draw or two each time. */
 static void scene_list_strips(pt_run *r)
 {
-    static const int order[4] = {0, 1, 3, 2};
     uint64_t before[PT_NCOUNTERS];
-    float st[6][2], v[4][2], c[4][4];
     GLuint list = glGenLists(1);
+    const char *method = getenv("QUADGL_METHOD");
     pt_begin_frame();
     glNewList(list, GL_COMPILE);
-    for (int k = 0; k < 3; k++) {
-        list_strip(k, 0, st);
-        glBegin(GL_QUAD_STRIP);
-        for (int i = 0; i < 6; i++) {
-            glColor4fv(SC[(i + k) % 6]);
-            glVertex2fv(st[i]);
-        }
-        glEnd();
-    }
+    for (int k = 0; k < 3; k++)
+        draw_column_strip(k, 0);
     glEndList();
     for (int pass = 0; pass < 4; pass++) {
-        int flat = pass & 1;
+        int flat = pass & 1, immediate = pass >= 2;
         glShadeModel(flat ? GL_FLAT : GL_SMOOTH);
         glPushMatrix();
         glTranslatef(0.0f, flat ? 1.05f : 0.0f, 0.0f);
         pt_counters(before);
-        if (pass < 2) {
+        if (immediate)
+            for (int k = 0; k < 3; k++)
+                draw_column_strip(k, 1);
+        else
             glCallList(list);
-        } else {
-            for (int k = 0; k < 3; k++) {
-                list_strip(k, 0, st);
-                glBegin(GL_QUAD_STRIP);
-                for (int i = 0; i < 6; i++) {
-                    glColor4fv(SC[(i + k + 1) % 6]);
-                    glVertex2fv(st[i]);
-                }
-                glEnd();
-            }
-        }
         glPopMatrix();
         uint64_t d = draws_since(before);
-        const char *method = getenv("QUADGL_METHOD");
-        int replayed = pass >= 2 && method && !strcmp(method, "split"); /* the driver's own strips */
+        int replayed = immediate && method && !strcmp(method, "split"); /* the driver's own strips */
         if (d > 2 && !replayed && !r->failure[0])
-            snprintf(r->failure, sizeof r->failure, "3 strips (%s) took %llu draws", pass < 2 ? "a list" : "immediate",
+            snprintf(r->failure, sizeof r->failure, "3 strips (%s) took %llu draws", immediate ? "immediate" : "a list",
                      (unsigned long long)d);
-        for (int k = 0; k < 3; k++) {
-            list_strip(k, 0, st);
-            for (int q = 0; q < 2; q++) {
-                for (int i = 0; i < 4; i++) {
-                    int j = 2 * q + order[i];
-                    v[i][0] = st[j][0], v[i][1] = st[j][1] + (flat ? 1.05f : 0.0f);
-                    memcpy(c[i], SC[(j + k + (pass >= 2)) % 6], sizeof c[i]);
-                }
-                pt_expect(r, v, c, flat ? 3 : 0);
-            }
-        }
+        expect_column_strips(r, immediate, flat ? 1.05f : 0.0f, flat);
     }
     glShadeModel(GL_SMOOTH);
     glDeleteLists(list, 1);
@@ -580,21 +584,17 @@ static void scene_list_strips(pt_run *r)
  * smooth quads, the reference inside). */
 static void scene_list_depth(pt_run *r)
 {
-    static const int order[4] = {0, 1, 3, 2};
+    static const float affine[4][4] = {{0.1f, 0.2f, 0.3f, 1}, {0.5f, 0.2f, 0.3f, 1}, {0.5f, 0.6f, 0.3f, 1},
+                                       {0.1f, 0.6f, 0.3f, 1}};
     uint64_t before[PT_NCOUNTERS];
-    float st[6][2], v[4][2], c[4][4];
+    float st[6][2];
     GLuint list = glGenLists(1);
     pt_begin_frame();
     glEnable(GL_DEPTH_TEST);
     glNewList(list, GL_COMPILE);
     for (int k = 0; k < 3; k++) {
-        list_strip(k, 0, st);
-        glBegin(GL_QUAD_STRIP);
-        for (int i = 0; i < 6; i++) {
-            glColor4fv(SC[(i + k) % 6]);
-            glVertex2fv(st[i]);
-        }
-        glEnd();
+        column_strip(k, st);
+        draw_column_strip(k, 0);
         glBegin(k == 1 ? GL_TRIANGLE_FAN : GL_TRIANGLES); /* above the strip, in its column */
         glColor3f(0.2f * (float)k, 0.5f, 0.9f);
         glVertex2f(st[4][0], 0.3f);
@@ -602,16 +602,9 @@ static void scene_list_depth(pt_run *r)
         glColor3f(0.9f, 0.3f * (float)k, 0.1f);
         glVertex2f(st[5][0], 0.6f);
         glEnd();
-        glBegin(GL_QUADS); /* affine colours: the driver's split is exact */
-        glColor3f(0.1f, 0.2f, 0.3f);
-        glVertex2f(st[4][0], 0.7f);
-        glColor3f(0.5f, 0.2f, 0.3f);
-        glVertex2f(st[5][0], 0.7f);
-        glColor3f(0.5f, 0.6f, 0.3f);
-        glVertex2f(st[5][0], 0.95f);
-        glColor3f(0.1f, 0.6f, 0.3f);
-        glVertex2f(st[4][0], 0.95f);
-        glEnd();
+        const float a[4][2] = {{st[4][0], 0.7f}, {st[5][0], 0.7f}, {st[5][0], 0.95f}, {st[4][0], 0.95f}};
+        quad_from(a, affine, 0); /* affine colours: the driver's split is exact */
+        pt_expect(r, a, affine, 0);
     }
     glEndList();
     pt_counters(before);
@@ -622,20 +615,7 @@ static void scene_list_depth(pt_run *r)
                  (unsigned long long)d);
     glDisable(GL_DEPTH_TEST);
     glDeleteLists(list, 1);
-    for (int k = 0; k < 3; k++) {
-        list_strip(k, 0, st);
-        for (int q = 0; q < 2; q++) {
-            for (int i = 0; i < 4; i++) {
-                int j = 2 * q + order[i];
-                v[i][0] = st[j][0], v[i][1] = st[j][1];
-                memcpy(c[i], SC[(j + k) % 6], sizeof c[i]);
-            }
-            pt_expect(r, v, c, 0);
-        }
-        const float flat[4][4] = {{0.1f, 0.2f, 0.3f, 1}, {0.5f, 0.2f, 0.3f, 1}, {0.5f, 0.6f, 0.3f, 1}, {0.1f, 0.6f, 0.3f, 1}};
-        const float a[4][2] = {{st[4][0], 0.7f}, {st[5][0], 0.7f}, {st[5][0], 0.95f}, {st[4][0], 0.95f}};
-        pt_expect(r, a, flat, 0);
-    }
+    expect_column_strips(r, 0, 0, 0);
     r->checks_reference = 1;
     r->min_quads = 9;
 }
