@@ -110,24 +110,26 @@ static void blit_scaled(demo_sheet *sh, int x0, int y_top, const unsigned char *
         }
 }
 
-void demo_sheet_cell(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
-                     const char *caption)
+static void cell(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h, const char *caption,
+                 int peak)
 {
     int x, y;
     cell_origin(sh, row, col, &x, &y);
-    blit_scaled(sh, x, y, rgba, w, h, 0);
+    blit_scaled(sh, x, y, rgba, w, h, peak);
     if (caption)
         demo_text_rgba(sh->rgba, sh->w, sh->h, x, y + sh->cell + 3, 1, ink_grey, caption);
+}
+
+void demo_sheet_cell(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
+                     const char *caption)
+{
+    cell(sh, row, col, rgba, w, h, caption, 0);
 }
 
 void demo_sheet_cell_peak(demo_sheet *sh, int row, int col, const unsigned char *rgba, int w, int h,
                           const char *caption)
 {
-    int x, y;
-    cell_origin(sh, row, col, &x, &y);
-    blit_scaled(sh, x, y, rgba, w, h, 1);
-    if (caption)
-        demo_text_rgba(sh->rgba, sh->w, sh->h, x, y + sh->cell + 3, 1, ink_grey, caption);
+    cell(sh, row, col, rgba, w, h, caption, 1);
 }
 
 void demo_sheet_legend(demo_sheet *sh, int line, int full_scale, const char *what)

@@ -331,6 +331,18 @@ static void scene_lists_states(pt_run *r)
     r->min_quads = 3;
 }
 
+/* A bound 2D texture of w x h RGBA texels with filter for both minification and magnification. */
+static GLuint texture_2d(int w, int h, const void *rgba, GLint filter)
+{
+    GLuint name;
+    glGenTextures(1, &name);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    return name;
+}
+
 /* ---- batches: many small primitives with changes between them ------------------------------ */
 
 /* Cell k of a 5 x 5 grid of small non-affine quads (corners pulled by varying amounts), all
@@ -629,11 +641,7 @@ static void scene_batch_states(pt_run *r)
     GLuint name;
     float v[4][2];
     pt_begin_frame();
-    glGenTextures(1, &name);
-    glBindTexture(GL_TEXTURE_2D, name);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    name = texture_2d(2, 2, tex, GL_NEAREST);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     for (int k = 0; k < 25; k++) {
         int way = k % 6;
@@ -798,11 +806,7 @@ static void scene_texture(pt_run *r)
             tex[y][x][0] = v, tex[y][x][1] = (GLubyte)(255 - v), tex[y][x][2] = 128, tex[y][x][3] = 255;
         }
     pt_begin_frame();
-    glGenTextures(1, &name);
-    glBindTexture(GL_TEXTURE_2D, name);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 8, 8, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    name = texture_2d(8, 8, tex, GL_LINEAR);
     glEnable(GL_TEXTURE_2D);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
     glBegin(GL_QUADS);
