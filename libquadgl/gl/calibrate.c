@@ -133,10 +133,12 @@ static void enter(qgl_context *ctx, saved *s)
         gl->Disable(caps_off[i]);
     for (GLint i = 0; i < ctx->max_clip_planes; i++)
         gl->Disable(GL_CLIP_PLANE0 + (GLenum)i);
-    if (ctx->has_arb_programs) {
+    if (ctx->has_arb_vp)
         gl->Disable(GL_VERTEX_PROGRAM_ARB);
+    if (ctx->has_arb_fp)
         gl->Disable(GL_FRAGMENT_PROGRAM_ARB);
-    }
+    if (ctx->has_ati_fs)
+        gl->Disable(GL_FRAGMENT_SHADER_ATI);
     for (GLint u = 0; u < ctx->max_units; u++) {
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
         for (size_t t = 0; t < sizeof textures_off / sizeof textures_off[0]; t++)

@@ -105,8 +105,10 @@ static int probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
         gl->GetBooleanv(GL_QUADS_FOLLOW_PROVOKING_VERTEX_CONVENTION, &follow);
         ctx->quads_follow_pv = follow;
     }
-    ctx->has_arb_programs = qgl__has_extension(ctx, "GL_ARB_fragment_program") ||
-                            qgl__has_extension(ctx, "GL_ARB_vertex_program");
+    ctx->has_arb_vp = qgl__has_extension(ctx, "GL_ARB_vertex_program");
+    ctx->has_arb_fp = qgl__has_extension(ctx, "GL_ARB_fragment_program");
+    ctx->has_ati_fs = qgl__has_extension(ctx, "GL_ATI_fragment_shader");
+    ctx->has_pipelines = v >= 41 || qgl__has_extension(ctx, "GL_ARB_separate_shader_objects");
     gl->GetIntegerv(GL_MAX_TEXTURE_UNITS, &ctx->max_units);
     gl->GetIntegerv(GL_MAX_CLIP_PLANES, &ctx->max_clip_planes);
     int cap = d->max_glsl ? d->max_glsl : 1000;

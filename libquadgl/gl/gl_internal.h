@@ -374,6 +374,12 @@ typedef struct qgl__state {
     int clamp;                /* GL_CLAMP_VERTEX_COLOR */
     int first_vertex_pv;      /* GL_FIRST_VERTEX_CONVENTION, and quads follow it */
     int ffp_ok;               /* the key describes the state (the programs can reproduce it) */
+    int arb_program;          /* an ARB vertex or fragment program or an ATI fragment shader is
+                                 enabled (FFP group) */
+    GLint pipeline;           /* the program pipeline object bound (RASTER group) */
+    int own_pipeline;         /* the application's own programs replace fixed function (a GLSL
+                                 program or pipeline, ARB programs): the driver draws its quads
+                                 as they are, since no path of ours runs its programs */
     double mvp[16];           /* projection * modelview, column-major */
     double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
@@ -445,7 +451,7 @@ struct qgl_context {
     int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c) */
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
     int quads_follow_pv;
-    int has_arb_programs;
+    int has_arb_vp, has_arb_fp, has_ati_fs, has_pipelines; /* programs that replace fixed function */
     GLint max_units, max_clip_planes;
     qgl_gl_stats_t stats;
 

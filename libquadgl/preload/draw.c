@@ -5,7 +5,7 @@
  * that part of the state, and with the glMaterial calls made between glBegin and glEnd: the
  * driver's own drawing of split quads takes them at their vertex, the GL path's from the quad
  * that holds it. Whatever the GL path cannot take, or when there is
- * none (QUADGL_METHOD=replay, no GL path built, its context failed, an application program is
+ * none (QUADGL_METHOD=replay, no GL path built, its context failed, a GLSL or ARB program is
  * bound, a texture unit beyond the batch's), is replayed to the driver as the very calls it
  * would have seen: glBegin, the attributes given per vertex (edge flags and generic
  * attributes included), glVertex4fv, glEnd. Either way the current attributes end as GL
@@ -125,7 +125,7 @@ int pl_prim_for_driver(pl_ctx *x, const pl_prim *p)
     qgl_context *qgl;
     if (pl_cfg.replay || p->lost || !(qgl = pl_ctx_qgl(x)))
         return 1;
-    return qgl__state_now(qgl)->program != 0;
+    return qgl__state_now(qgl)->own_pipeline;
 }
 
 void pl_draw_prim(pl_ctx *x, pl_prim *p)
