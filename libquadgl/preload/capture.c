@@ -13,7 +13,12 @@
  * many vertices one glBegin/glEnd holds. Misuse keeps the driver's errors: a call GL forbids
  * inside glBegin/glEnd (another glBegin, a state change, a query) makes the driver report
  * GL_INVALID_OPERATION through a glEnd it sees with no glBegin, and has no other effect; a
- * glEnd with no glBegin is the driver's own; vertices outside go to the driver. */
+ * glEnd with no glBegin is the driver's own; vertices outside go to the driver. A display
+ * list called inside the primitive runs its calls there, and only the driver can run the
+ * calls of its segments (lists.c) in a primitive, legal ones and errors alike: the driver then
+ * takes over the primitive (pl_cap_to_driver: glBegin and the vertices so far), and the rest
+ * reaches it as the program's calls. So does a primitive a list leaves open at glEndList
+ * (legal under GL_COMPILE): its calls are compiled into the list as they came. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -367,9 +372,11 @@ PL_EXPORT void glBegin(GLenum mode)
     }
     /* In a list every primitive is ours (the list's geometry); outside, only quads. */
     if ((!quad && !(x->compiling && pl_valid_mode(mode))) || x->native_begin) {
-        if (x->compiling)
+        if (x->compiling && pl_valid_mode(mode))
+            pl_list_begin_end(x, 1);
+        else if (x->compiling)
             pl_list_state(x);
-        if (!x->native_begin && pl_valid_mode(mode))
+        if (pl_valid_mode(mode) && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE))
             x->native_begin = 1;
         REAL(glBegin)(mode);
         return;
@@ -379,23 +386,47 @@ PL_EXPORT void glBegin(GLenum mode)
     pl_update_slow(x);
 }
 
-/* The current attributes after glEnd are the last ones the primitive gave. */
+/* The current attributes after glEnd are the last ones the primitive gave (a list's geometry
+ * keeps its own: lists.c). */
 static void pl_note_prim_current(pl_ctx *x, const pl_prim *p)
 {
     for (int a = 0; a < QGL__NATTR; a++)
         if (p->v.mask & (1u << a))
             pl_note_current(x, a, p->cur[a]);
-    if (p->v.mask & QGL__A_EDGE)
-        pl_hook_edgeflag(x, p->cur_edge);
+    if ((p->v.mask & QGL__A_EDGE) && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE)) {
+        x->cur_edge = p->cur_edge;
+        x->cur_known |= QGL__A_EDGE;
+    }
+}
+
+void pl_cap_to_driver(pl_ctx *x)
+{
+    pl_prim *p = &x->prim;
+    x->capturing = 0;
+    pl_update_slow(x);
+    if (x->compiling && x->compile_mode == GL_COMPILE_AND_EXECUTE)
+        pl_list_defer(x);
+    if (x->compiling)
+        pl_list_begin_end(x, 1);
+    pl_prim_to_driver(x, p);
+    if (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE) {
+        x->native_begin = 1;
+        pl_count_passthrough(pl_prim_quads(p));
+        pl_note_prim_current(x, p);
+    }
 }
 
 PL_EXPORT void glEnd(void)
 {
     pl_ctx *x = pl_tls_ctx;
     if (!x || !x->capturing) {
-        if (x)
+        if (x && x->compiling)
+            pl_list_begin_end(x, 0);
+        if (x && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE))
             x->native_begin = 0;
         REAL(glEnd)();
+        if (x && x->compiling)
+            pl_list_end_prim(x);
         return;
     }
     x->capturing = 0;

@@ -49,12 +49,11 @@ static void pl_apply_material(const pl_material *m)
     REAL(glMaterialfv)(m->face, m->pname, m->v);
 }
 
-/* The driver draws vertices [v0, v1) itself, with the materials that fall among them. */
-static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
+/* The driver gets vertices [v0, v1) of p, with the materials that fall among them. */
+static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
 {
     struct qgl__gl *gl = pl_gl();
     const qgl__verts *v = &p->v;
-    REAL(glBegin)(p->mode);
     for (size_t i = v0; i < v1; i++) {
         for (; *mat < p->nmat && p->mat[*mat].vertex <= i; ++*mat)
             pl_apply_material(&p->mat[*mat]);
@@ -70,7 +69,24 @@ static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
         }
         gl->Vertex4fv(v->pos + 4 * i);
     }
+}
+
+/* The driver draws vertices [v0, v1) itself. */
+static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
+{
+    REAL(glBegin)(p->mode);
+    pl_replay_vertices(p, v0, v1, mat);
     REAL(glEnd)();
+}
+
+void pl_prim_to_driver(pl_ctx *x, const pl_prim *p)
+{
+    size_t mat = 0;
+    REAL(glBegin)(p->mode);
+    pl_replay_vertices(p, 0, p->v.n, &mat);
+    for (; mat < p->nmat; mat++)
+        pl_apply_material(&p->mat[mat]);
+    pl_prim_apply_current(x, p);
 }
 
 void pl_prim_emit(pl_ctx *x, const pl_prim *p)

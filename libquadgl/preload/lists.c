@@ -19,8 +19,13 @@
  * current value of an attribute (given in the list only later) are filled when the list runs;
  * after a geometry item the current attributes are the last ones it gave, as GL leaves them.
  * Primitives with generic attributes, or that the capture cannot represent, stay primitives
- * of their own, replayed to the driver. Objects live in the share group of the contexts (a
- * sorted array by name under a mutex) and are reference counted while they run. */
+ * of their own, replayed to the driver. GL lets a list begin a primitive and another end it,
+ * and a list be called inside glBegin/glEnd: a segment remembers whether its calls leave the
+ * driver inside a glBegin or outside, and a list run inside the driver's glBegin draws none of
+ * its own primitives there but raises GL_INVALID_OPERATION, as the driver's lists do. (Under
+ * GL_COMPILE_AND_EXECUTE such a primitive is compiled only, and run when it ends: the driver
+ * cannot begin or end a segment inside its glBegin.) Objects live in the share group of the
+ * contexts (a sorted array by name under a mutex) and are reference counted while they run. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -47,6 +52,8 @@ typedef struct pl_item {
     int kind;
     GLuint name;       /* segment: the driver's list; call: the list called */
     unsigned mask;     /* segment: what its calls change (track.c's PL_D_*) */
+    int begins;        /* segment: its calls leave the driver inside a glBegin (1), outside (2),
+                          or neither begin nor end one (0) */
     pl_geom *geom;     /* PL_ITEM_GEOMETRY */
     pl_prim prim;      /* PL_ITEM_PRIM */
     uint32_t *names;   /* PL_ITEM_CALLS: the names given, the base added when it runs */
@@ -60,6 +67,10 @@ struct pl_list {
     size_t n, cap;
     int refs;
     int open;          /* while compiling: 0 nothing, 1 a segment, 2 the last item's geometry */
+    int begins;        /* while compiling: the open segment's begins */
+    size_t defer;      /* while compiling under GL_COMPILE_AND_EXECUTE: 1 + the first item of a
+                          primitive the driver took over, compiled only and run at its glEnd
+                          (the driver cannot begin or end a list inside its glBegin) */
 };
 
 struct pl_share {
@@ -242,14 +253,17 @@ static void pl_list_close(pl_ctx *x)
     pl_item *it = l->n ? &l->items[l->n - 1] : NULL;
     if (l->open == 1) {
         REAL(glEndList)();
-        if (it && it->kind == PL_ITEM_SEGMENT)
+        if (it && it->kind == PL_ITEM_SEGMENT) {
             it->mask |= x->seg_dirty;
+            it->begins = l->begins ? l->begins : it->begins;
+        }
     } else if (l->open == 2 && it && it->geom && !qgl__mesh_finish(&it->geom->m)) {
         pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
         it->geom->m.nprim = 0;
     }
     x->seg_dirty = 0;
     l->open = 0;
+    l->begins = 0;
 }
 
 void pl_list_state(pl_ctx *x)
@@ -265,6 +279,37 @@ void pl_list_state(pl_ctx *x)
     }
     REAL(glNewList)(sub, x->compile_mode);
     l->open = 1;
+}
+
+void pl_list_begin_end(pl_ctx *x, int inside)
+{
+    pl_list_state(x);
+    x->compiling->begins = inside ? 1 : 2;
+}
+
+static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int depth);
+
+void pl_list_defer(pl_ctx *x)
+{
+    pl_list *l = x->compiling;
+    pl_list_close(x);
+    l->defer = l->n + 1;
+    x->compile_mode = GL_COMPILE;
+}
+
+/* The deferred primitive's items run now (no segment is open: the driver only runs them). */
+void pl_list_end_prim(pl_ctx *x)
+{
+    pl_list *l = x->compiling;
+    size_t from;
+    if (!l->defer)
+        return;
+    pl_list_close(x);
+    from = l->defer - 1;
+    l->defer = 0;
+    x->compile_mode = GL_COMPILE_AND_EXECUTE;
+    pl_items_exec(x, l, from, l->n, 1);
+    x->cur_known = 0;
 }
 
 /* The open geometry item (opened after closing a segment); NULL without memory. */
@@ -379,6 +424,8 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
         pl_invalid_operation();
         return;
     }
+    if (x && x->compiling)
+        pl_list_state(x); /* the driver's list is open: its own error */
     if (!x || !pl_cfg.capture || x->compiling || x->native_begin || list == 0 ||
         (mode != GL_COMPILE && mode != GL_COMPILE_AND_EXECUTE) || !(l = calloc(1, sizeof *l))) {
         REAL(glNewList)(list, mode);
@@ -400,7 +447,7 @@ PL_EXPORT void glEndList(void)
 {
     pl_ctx *x = pl_tls_ctx;
     pl_list *l;
-    if (x && x->capturing) {
+    if (x && x->capturing && (!x->compiling || x->compile_mode != GL_COMPILE)) {
         pl_invalid_operation();
         return;
     }
@@ -408,11 +455,14 @@ PL_EXPORT void glEndList(void)
         REAL(glEndList)();
         return;
     }
+    if (x->capturing) /* GL_COMPILE: the list ends inside its primitive */
+        pl_cap_to_driver(x);
     l = x->compiling;
+    pl_list_end_prim(x);
     pl_list_close(x);
     x->compiling = NULL;
     pl_update_slow(x);
-    if (l->n == 1 && l->items[0].kind == PL_ITEM_SEGMENT && !l->items[0].mask) {
+    if (l->n == 1 && l->items[0].kind == PL_ITEM_SEGMENT && !l->items[0].mask && !l->items[0].begins) {
         /* Nothing recorded and nothing tracked changed: the driver's list is the whole list. */
         pl_share_set(x->share, l->name, NULL);
         pl_list_unref(l);
@@ -507,8 +557,13 @@ static void pl_geom_lead(pl_ctx *x, pl_geom *g)
 static void pl_geom_exec(pl_ctx *x, pl_geom *g)
 {
     struct qgl__gl *gl;
-    qgl_context *qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
+    qgl_context *qgl;
+    if (g->m.nprim && x->native_begin) {
+        pl_invalid_operation();
+        return;
+    }
     if (g->m.nprim) {
+        qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
         pl_geom_lead(x, g);
         if (!qgl || qgl__mesh_draw(qgl, &g->m, x->share) < 0)
             pl_geom_replay(&g->m);
@@ -535,6 +590,33 @@ static void pl_exec_calls(pl_ctx *x, const uint32_t *names, size_t count, int de
         pl_list_exec(x, (GLuint)base + names[k], depth);
 }
 
+/* Items [from, to) of l, in order. */
+static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int depth)
+{
+    for (size_t i = from; i < to; i++) {
+        pl_item *it = &l->items[i];
+        switch (it->kind) {
+        case PL_ITEM_SEGMENT:
+            REAL(glCallList)(it->name);
+            x->dirty |= it->mask & PL_D_STATE;
+            if (it->mask & PL_D_CURRENT)
+                x->cur_known = 0;
+            if (it->begins)
+                x->native_begin = it->begins == 1;
+            break;
+        case PL_ITEM_GEOMETRY: pl_geom_exec(x, it->geom); break;
+        case PL_ITEM_PRIM:
+            if (x->native_begin)
+                pl_invalid_operation();
+            else
+                pl_draw_prim(x, &it->prim);
+            break;
+        case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
+        default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
+        }
+    }
+}
+
 static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
 {
     pl_list *l;
@@ -545,21 +627,7 @@ static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
         REAL(glCallList)(name);
         return;
     }
-    for (size_t i = 0; i < l->n; i++) {
-        pl_item *it = &l->items[i];
-        switch (it->kind) {
-        case PL_ITEM_SEGMENT:
-            REAL(glCallList)(it->name);
-            x->dirty |= it->mask & PL_D_STATE;
-            if (it->mask & PL_D_CURRENT)
-                x->cur_known = 0;
-            break;
-        case PL_ITEM_GEOMETRY: pl_geom_exec(x, it->geom); break;
-        case PL_ITEM_PRIM: pl_draw_prim(x, &it->prim); break;
-        case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
-        default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
-        }
-    }
+    pl_items_exec(x, l, 0, l->n, depth);
     pl_list_unref(l);
 }
 
@@ -611,10 +679,12 @@ static void pl_compile_call(pl_ctx *x, int kind, GLuint name, uint32_t *names, s
 PL_EXPORT void glCallList(GLuint list)
 {
     pl_ctx *x = pl_tls_ctx;
-    if (!x || x->capturing || x->native_begin || !pl_cfg.capture) {
+    if (!x || !pl_cfg.capture) {
         REAL(glCallList)(list);
         return;
     }
+    if (x->capturing)
+        pl_cap_to_driver(x);
     if (x->compiling) {
         pl_compile_call(x, PL_ITEM_CALL, list, NULL, 0);
         return;
@@ -645,8 +715,10 @@ PL_EXPORT void glCallLists(GLsizei n, GLenum type, const void *lists)
 {
     pl_ctx *x = pl_tls_ctx;
     uint32_t *names;
-    if (!x || x->capturing || x->native_begin || !pl_cfg.capture || n <= 0 || !lists ||
-        (!x->compiling && pl_share_empty(x->share)) || !(names = malloc((size_t)n * sizeof *names))) {
+    if (x && x->capturing && pl_cfg.capture && n > 0 && lists)
+        pl_cap_to_driver(x);
+    if (!x || !pl_cfg.capture || n <= 0 || !lists || (!x->compiling && pl_share_empty(x->share)) ||
+        !(names = malloc((size_t)n * sizeof *names))) {
         REAL(glCallLists)(n, type, lists);
         return;
     }

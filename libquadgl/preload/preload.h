@@ -208,7 +208,8 @@ static inline void pl_update_slow(pl_ctx *x)
 /* The driver's entry points as the GL path's table (resolved once, for replays). */
 struct qgl__gl *pl_gl(void);
 
-/* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives. */
+/* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives (or,
+ * inside the driver's own glBegin, as a primitive begun there gives). */
 void pl_invalid_operation(void);
 void pl_touch_slow(pl_ctx *x, unsigned mask);
 
@@ -262,6 +263,14 @@ void pl_list_state(pl_ctx *x);
 void pl_list_add_prim(pl_ctx *x, const pl_prim *p);
 /* While compiling: an attribute call between primitives (slot QGL__NATTR: the edge flag). */
 void pl_list_attrib(pl_ctx *x, int slot, const float v[4]);
+/* While compiling: the driver compiles a glBegin (inside 1) or a glEnd (0) that its list leaves
+ * open or closes, so that running the list tells whether the driver is inside a primitive. */
+void pl_list_begin_end(pl_ctx *x, int inside);
+/* While compiling under GL_COMPILE_AND_EXECUTE: the driver takes over a primitive (see
+ * pl_cap_to_driver); its calls are compiled only until its glEnd (or glEndList), then run
+ * (pl_list_end_prim, a no-op otherwise). */
+void pl_list_defer(pl_ctx *x);
+void pl_list_end_prim(pl_ctx *x);
 
 /* ---- capture (capture.c, arrays.c) -------------------------------------------------------- */
 
@@ -271,6 +280,8 @@ void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
 void pl_cap_edgeflag(pl_ctx *x, GLboolean flag);
 void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
 void pl_cap_array_element(pl_ctx *x, GLint i);
+/* The driver takes over the primitive being captured (into the list's segment while compiling). */
+void pl_cap_to_driver(pl_ctx *x);
 
 /* The hooks of the generated attribute and vertex wrappers: 1 when the call was captured (it
  * must not reach the driver), 0 when it goes on to the driver. */
@@ -337,6 +348,9 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p);
 void pl_prim_apply_current(pl_ctx *x, const pl_prim *p);
 /* The calls that draw p in the driver (glBegin, attributes, vertices, glEnd, materials). */
 void pl_prim_emit(pl_ctx *x, const pl_prim *p);
+/* The driver's glBegin and p's vertices so far, then the values its next vertex takes: the rest
+ * of the primitive goes to the driver as the program's own calls. */
+void pl_prim_to_driver(pl_ctx *x, const pl_prim *p);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
 

@@ -16,7 +16,11 @@
 
 void pl_invalid_operation(void)
 {
-    REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
+    pl_ctx *x = pl_tls_ctx;
+    if (x && x->native_begin)
+        REAL(glBegin)(GL_POINTS); /* a glBegin inside the driver's: the error, nothing else */
+    else
+        REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
 }
 
 /* While compiling, every call that is not geometry goes into a segment the driver compiles. */
