@@ -36,6 +36,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->nmat = 0;
     p->lost = 0;
     p->from_arrays = 0;
+    p->in_list = 0;
     memset(p->first, 0, sizeof p->first);
     p->cur_edge = GL_TRUE;
 }

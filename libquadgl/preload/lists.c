@@ -406,6 +406,8 @@ void pl_list_add_prim(pl_ctx *x, const pl_prim *p)
             if (it)
                 l->n--;
             pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
+        } else {
+            it->prim.in_list = 1;
         }
         return;
     }
@@ -495,19 +497,22 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 
 /* ---- executing ------------------------------------------------------------------------------ */
 
-/* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS as the
- * triangles its display lists split them into (0-1-3, 1-2-3), not its immediate mode's. */
+/* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS, when
+ * the polygons are filled, as the triangles its display lists split them into (0-1-3, 1-2-3),
+ * not its immediate mode's. */
 static void pl_geom_replay(const qgl__mesh *m)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
     struct qgl__gl *gl = pl_gl();
     const qgl__verts *v = &m->v;
+    int filled = pl_polygons_filled();
     for (size_t k = 0; k < m->nprim; k++) {
         const qgl__mesh_prim *p = &m->prim[k];
-        size_t c = p->chg0, end = p->chg0 + p->nchg, n = p->mode == GL_QUADS ? 6 * (p->count / 4) : p->count;
-        gl->Begin(p->mode == GL_QUADS ? GL_TRIANGLES : p->mode);
+        int tris = p->mode == GL_QUADS && filled;
+        size_t c = p->chg0, end = p->chg0 + p->nchg, n = tris ? 6 * (p->count / 4) : p->count;
+        gl->Begin(tris ? GL_TRIANGLES : p->mode);
         for (size_t j = 0; j < n; j++) {
-            size_t i = p->first + (p->mode == GL_QUADS ? 4 * (j / 6) + (size_t)split[j % 6] : j);
+            size_t i = p->first + (tris ? 4 * (j / 6) + (size_t)split[j % 6] : j);
             for (; c < end && m->chg[c].vertex <= i; c++)
                 gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
             for (int a = 0; a < QGL__NATTR; a++)

@@ -131,6 +131,7 @@ typedef struct pl_prim {
     size_t nmat, capmat;
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
+    int in_list;             /* a display list's own: replayed as the driver's lists draw */
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);
@@ -351,6 +352,9 @@ void pl_prim_emit(pl_ctx *x, const pl_prim *p);
 /* The driver's glBegin and p's vertices so far, then the values its next vertex takes: the rest
  * of the primitive goes to the driver as the program's own calls. */
 void pl_prim_to_driver(pl_ctx *x, const pl_prim *p);
+/* Whether the driver fills both faces' polygons (its display lists then draw GL_QUADS as the
+ * triangles 0-1-3, 1-2-3; otherwise as quads, keeping their outlines and edge flags). */
+int pl_polygons_filled(void);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
 
