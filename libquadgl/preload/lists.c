@@ -416,6 +416,15 @@ void pl_list_add_prim(pl_ctx *x, const pl_prim *p)
         pl_log(PL_LOG_WARN, "out of memory: primitives lost from display list %u", l->name);
 }
 
+/* A list command inside a captured primitive: GL_INVALID_OPERATION now, never compiled (list
+ * commands run at once, even while a list is compiled). */
+static void pl_list_error_now(pl_ctx *x)
+{
+    if (x->compiling)
+        pl_list_close(x);
+    REAL(glEnd)(); /* the driver saw no glBegin: the error, nothing else */
+}
+
 PL_EXPORT void glNewList(GLuint list, GLenum mode)
 {
     pl_ctx *x = pl_tls_ctx;
@@ -423,7 +432,7 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
     if (!x && pl_cfg.capture)
         x = pl_current();
     if (x && x->capturing) {
-        pl_invalid_operation();
+        pl_list_error_now(x);
         return;
     }
     if (x && x->compiling)
@@ -450,7 +459,7 @@ PL_EXPORT void glEndList(void)
     pl_ctx *x = pl_tls_ctx;
     pl_list *l;
     if (x && x->capturing && (!x->compiling || x->compile_mode != GL_COMPILE)) {
-        pl_invalid_operation();
+        pl_list_error_now(x);
         return;
     }
     if (!x || !x->compiling) {
@@ -471,6 +480,18 @@ PL_EXPORT void glEndList(void)
         return;
     }
     pl_share_set(x->share, l->name, l);
+}
+
+PL_EXPORT void glListBase(GLuint base)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_UNLIKELY(pl_touch(PL_D_LIST_BASE)))
+        return;
+    REAL(glListBase)(base);
+    if (x && !x->native_begin && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE)) {
+        x->list_base = (GLint)base;
+        x->list_base_known = 1;
+    }
 }
 
 PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
@@ -587,10 +608,20 @@ static void pl_geom_exec(pl_ctx *x, pl_geom *g)
 
 static void pl_list_exec(pl_ctx *x, GLuint name, int depth);
 
+/* The list base: glListBase's value, or asked of the driver (never inside its glBegin). */
+static GLint pl_list_base(pl_ctx *x)
+{
+    if (!x->list_base_known && !x->native_begin) {
+        x->list_base = 0;
+        REAL(glGetIntegerv)(GL_LIST_BASE, &x->list_base);
+        x->list_base_known = 1;
+    }
+    return x->list_base;
+}
+
 static void pl_exec_calls(pl_ctx *x, const uint32_t *names, size_t count, int depth)
 {
-    GLint base = 0;
-    REAL(glGetIntegerv)(GL_LIST_BASE, &base);
+    GLint base = pl_list_base(x);
     for (size_t k = 0; k < count; k++)
         pl_list_exec(x, (GLuint)base + names[k], depth);
 }
@@ -606,6 +637,8 @@ static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int dep
             x->dirty |= it->mask & PL_D_STATE;
             if (it->mask & PL_D_CURRENT)
                 x->cur_known = 0;
+            if (it->mask & PL_D_LIST_BASE)
+                x->list_base_known = 0;
             if (it->begins)
                 x->native_begin = it->begins == 1;
             break;
@@ -704,8 +737,7 @@ PL_EXPORT void glCallList(GLuint list)
 /* Whether any of the names (plus the current base) is one of ours. */
 static int pl_any_ours(pl_ctx *x, const uint32_t *names, GLsizei n)
 {
-    GLint base = 0;
-    REAL(glGetIntegerv)(GL_LIST_BASE, &base);
+    GLint base = pl_list_base(x);
     for (GLsizei i = 0; i < n; i++) {
         pl_list *l = pl_share_get(x->share, (GLuint)base + names[i]);
         if (l) {

@@ -154,6 +154,7 @@ enum {
     PL_D_FFP = QGL__D_FFP,
     PL_D_BIND = QGL__D_BIND,
     PL_D_CURRENT = 1 << 8,
+    PL_D_LIST_BASE = 1 << 9,
     PL_D_STATE = QGL__D_ALL
 };
 
@@ -179,6 +180,9 @@ struct pl_ctx {
     GLenum compile_mode;
     unsigned seg_dirty;      /* while compiling: what the open segment's calls change */
     int list_depth;
+    GLint list_base;         /* glListBase's value, kept because glCallLists inside the driver's
+                                glBegin (after a hand-over) may not ask the driver */
+    int list_base_known;
     int bound;               /* threads it is current on (0 or 1) */
     int dead;                /* destroyed while current elsewhere: freed at release */
     uint64_t published[PL_ST_COUNT]; /* its GL path's counters already in the totals */
@@ -210,7 +214,9 @@ static inline void pl_update_slow(pl_ctx *x)
 struct qgl__gl *pl_gl(void);
 
 /* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives (or,
- * inside the driver's own glBegin, as a primitive begun there gives). */
+ * inside the driver's own glBegin, as a primitive begun there gives). Inside a primitive of a
+ * list being compiled the error is compiled (and raised when the list runs), as the call
+ * itself would be. */
 void pl_invalid_operation(void);
 void pl_touch_slow(pl_ctx *x, unsigned mask);
 
@@ -225,6 +231,8 @@ static inline int pl_touch(unsigned mask)
     x->dirty |= mask & PL_D_STATE;
     if (mask & PL_D_CURRENT)
         x->cur_known = 0;
+    if (mask & PL_D_LIST_BASE)
+        x->list_base_known = 0;
     if (PL_UNLIKELY(x->slow)) {
         if (x->capturing) {
             pl_invalid_operation();
@@ -235,14 +243,31 @@ static inline int pl_touch(unsigned mask)
     return 0;
 }
 
-/* A pure query: only its place inside a captured glBegin/glEnd matters. */
+/* A pure query: only its place inside a captured glBegin/glEnd matters (under GL_COMPILE
+ * that glBegin is only compiled, and the query is legal). */
 static inline int pl_inside_capture(void)
 {
     pl_ctx *x = pl_tls_ctx;
-    if (PL_LIKELY(x == NULL || !x->capturing))
+    if (PL_LIKELY(x == NULL || !x->capturing) || (x->compiling && x->compile_mode == GL_COMPILE))
         return 0;
     pl_invalid_operation();
     return 1;
+}
+
+void pl_uncaptured_slow(pl_ctx *x);
+
+/* A call GL allows inside glBegin/glEnd that the capture does not represent (colour indices,
+ * integer, double, packed and half-float attributes): it may change the current attributes;
+ * inside a captured primitive the driver takes the primitive over first (pl_cap_to_driver),
+ * and while compiling it goes into a segment. */
+static inline void pl_touch_uncaptured(void)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_LIKELY(x == NULL))
+        return;
+    x->cur_known = 0;
+    if (PL_UNLIKELY(x->slow))
+        pl_uncaptured_slow(x);
 }
 
 /* The current value of attribute a (QGL__AT_*; 4 floats), asked of the driver if unknown. */
