@@ -5,7 +5,8 @@
  * flags in polygon mode line (gl-1.0-edgeflag-quads), display lists called inside glBegin/glEnd
  * and lists that begin or end a primitive, with the errors the driver raises for what a list
  * holds that is illegal there (gl-1.0-dlist-beginend), calls legal inside glBegin/glEnd that
- * the capture does not represent (gl-1.0-beginend-coverage), generic attributes given inside
+ * the capture does not represent (gl-1.0-beginend-coverage), colour sum left on after the
+ * library's first draw (draw-batch), generic attributes given inside
  * glBegin/glEnd and in lists with a GLSL program bound (attribs), and quads drawn with an ARB
  * vertex and fragment program enabled (pos-array), which must reach the driver as they are
  * and never the CPU fallback's fixed function. Values recorded: glGetError after each step,
@@ -300,6 +301,49 @@ static void scene_beginend_calls(pt_run *r)
     r->min_quads = 1; /* the list's quad: the others go to the driver when it takes them over */
 }
 
+/* ---- state the GL path must leave as it found it ----------------------------------------------- */
+
+/* Colour sum on at the first quad the library draws (which makes its GL path, and measures
+ * what drawing costs): the secondary colour must still be added afterwards, in quads drawn
+ * at once and in a list's triangles and quads (piglit's draw-batch). */
+static void scene_color_sum(pt_run *r)
+{
+    static const float magenta[4] = {1, 0, 1, 1}, grey[3] = {0.2f, 0.2f, 0.2f};
+    GLuint l = glGenLists(1);
+    pt_begin_frame();
+    glEnable(GL_COLOR_SUM);
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(magenta);
+        glSecondaryColor3fv(grey);
+        glVertex2f(P[i][0] * 0.4f - 0.5f, P[i][1] * 0.4f - 0.5f);
+    }
+    glEnd();
+    glNewList(l, GL_COMPILE);
+    glBegin(GL_TRIANGLES);
+    for (int i = 0; i < 3; i++) {
+        glColor4fv(magenta);
+        glSecondaryColor3fv(grey);
+        glVertex2f(P[i][0] * 0.4f + 0.5f, P[i][1] * 0.4f - 0.5f);
+    }
+    glEnd();
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(PC[i]);
+        glSecondaryColor3fv(grey);
+        glVertex2f(P[i][0] * 0.4f, P[i][1] * 0.4f + 0.5f);
+    }
+    glEnd();
+    glEndList();
+    glCallList(l);
+    pt_value(r, glIsEnabled(GL_COLOR_SUM));
+    glDisable(GL_COLOR_SUM);
+    glDeleteLists(l, 1);
+    value_error(r);
+    r->native_equal = 1;
+    r->min_quads = 2;
+}
+
 /* ---- the application's own programs ------------------------------------------------------------ */
 
 /* A GLSL program whose colour is generic attribute 1, given per vertex inside glBegin/glEnd,
@@ -439,6 +483,7 @@ static const pt_scene scenes[] = {
     {"edgeflag_line", scene_edgeflag_line},
     {"dlist_beginend", scene_dlist_beginend},
     {"beginend_calls", scene_beginend_calls},
+    {"color_sum", scene_color_sum},
     {"glsl_attribs", scene_glsl_attribs},
     {"arb_programs", scene_arb_programs},
 };
