@@ -158,7 +158,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
 {
     if (!ctx)
         return;
-    qgl__flush(ctx); /* inside its GL context, as the owner destroys it */
+    if (!ctx->gl_gone)
+        qgl__flush(ctx); /* inside its GL context, as the owner destroys it */
     if (qgl__tls_current == ctx)
         qgl__tls_current = NULL;
     qgl__programs_free(ctx);
@@ -166,7 +167,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     qgl__grid_free(ctx);
     free(ctx->arrays);
     if (ctx->has_vao) {
-        ctx->gl.DeleteVertexArrays(1, &ctx->vao);
+        if (!ctx->gl_gone)
+            ctx->gl.DeleteVertexArrays(1, &ctx->vao);
         qgl__stream_free(ctx);
     }
     qgl__verts_free(&ctx->cap);
@@ -177,6 +179,14 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     free(ctx->clip);
     free(ctx->path);
     free(ctx);
+}
+
+void qgl__gl_forget(qgl_context *ctx)
+{
+    if (!ctx)
+        return;
+    ctx->gl_gone = 1;
+    qgl_gl_destroy(ctx);
 }
 
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method)

@@ -450,6 +450,8 @@ struct qgl_context {
     int version;              /* GL version * 10 (e.g. 45) */
     int shader_level;         /* 0, 120 (glsl120.c), 150 (shader.c) */
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
+    int gl_gone;              /* being freed while its GL context is gone or current elsewhere:
+                                 no GL call (qgl__gl_forget) */
     int quads_follow_pv;
     int has_arb_vp, has_arb_fp, has_ati_fs, has_pipelines; /* programs that replace fixed function */
     GLint max_units, max_clip_planes;
@@ -601,6 +603,9 @@ void qgl__mesh_free(struct qgl__gl *gl, const void *owner, qgl__mesh *m);
  * it cannot be built (a warning is logged once). */
 GLuint qgl__program(qgl_context *ctx, const qgl__key *key);
 void qgl__programs_free(qgl_context *ctx);
+/* Frees ctx without a GL call, for a GL context destroyed while not current here: its GL
+ * objects go with it, or stay with its share group. */
+void qgl__gl_forget(qgl_context *ctx);
 /* Give the bound program prog the viewport's half size (u_px) if it changed since last set. */
 void qgl__program_viewport(qgl_context *ctx, GLuint prog, const GLint viewport[4]);
 /* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */
