@@ -348,7 +348,8 @@ void pl_list_attrib(pl_ctx *x, int slot, const float v[4])
 static void pl_geom_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge)
 {
     if (a == QGL__NATTR) {
-        memset(v->edge + from, edge, to - from);
+        if (to > from)
+            memset(v->edge + from, edge, to - from);
         return;
     }
     int k = qgl__attribs[a].floats;
@@ -366,7 +367,8 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
     unsigned old = m->mask, mask = old | p->v.mask | (g->set & (QGL__A_ATTRIBS | QGL__A_EDGE));
     if (!qgl__verts_reserve(m, base + n, mask))
         return 0;
-    memcpy(m->pos + 4 * base, p->v.pos, 16 * n);
+    if (n) /* a primitive with no vertex may have no arrays at all */
+        memcpy(m->pos + 4 * base, p->v.pos, 16 * n);
     for (int a = 0; a <= QGL__NATTR; a++) {
         unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
         if (!(mask & bit))
@@ -382,11 +384,13 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
         if (!given)
             continue;
         if (a == QGL__NATTR) {
-            memcpy(m->edge + base + from, p->v.edge + from, n - from);
+            if (n > from)
+                memcpy(m->edge + base + from, p->v.edge + from, n - from);
             g->cur_edge = p->cur_edge;
         } else {
             size_t k = (size_t)qgl__attribs[a].floats;
-            memcpy(m->attr[a] + k * (base + from), p->v.attr[a] + k * from, k * (n - from) * sizeof(float));
+            if (n > from)
+                memcpy(m->attr[a] + k * (base + from), p->v.attr[a] + k * from, k * (n - from) * sizeof(float));
             memcpy(g->cur[a], p->cur[a], sizeof g->cur[a]);
         }
         g->set |= bit;
