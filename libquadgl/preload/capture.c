@@ -270,8 +270,10 @@ static void pl_push_material(pl_ctx *x, GLenum face, GLenum pname, const float *
     memcpy(m->v, v, (size_t)n * sizeof *v);
 }
 
-/* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. */
-int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv)
+/* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. The
+ * scalar forms give one value, which the driver takes unconverted for any parameter (what it
+ * reads past it is undefined; here zeros). */
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv, int given)
 {
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
@@ -282,8 +284,8 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
-    for (int i = 0; i < n; i++)
-        v[i] = fv ? fv[i] : (n == 4) ? PL_I(iv[i]) : (float)iv[i];
+    for (int i = 0; i < n && i < given; i++)
+        v[i] = fv ? fv[i] : (n == 4 && given == 4) ? PL_I(iv[i]) : (float)iv[i];
     pl_push_material(x, face, pname, v, n);
     return 1;
 }

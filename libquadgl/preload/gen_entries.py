@@ -207,13 +207,13 @@ for suffix_now in ('', 'ARB'):
 suffix_now = ''
 
 hook_entry('glMaterialf', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLfloat', 'param')],
-           'pl_hook_material(cx, face, pname, &param, NULL)')
+           'pl_hook_material(cx, face, pname, &param, NULL, 1)')
 hook_entry('glMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLfloat *', 'params')],
-           'pl_hook_material(cx, face, pname, params, NULL)')
+           'pl_hook_material(cx, face, pname, params, NULL, 4)')
 hook_entry('glMateriali', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLint', 'param')],
-           'pl_hook_material(cx, face, pname, NULL, &param)')
+           'pl_hook_material(cx, face, pname, NULL, &param, 1)')
 hook_entry('glMaterialiv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLint *', 'params')],
-           'pl_hook_material(cx, face, pname, NULL, params)')
+           'pl_hook_material(cx, face, pname, NULL, params, 4)')
 hook_entry('glArrayElement', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
 hook_entry('glArrayElementEXT', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
 

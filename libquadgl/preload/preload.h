@@ -355,7 +355,8 @@ static inline int pl_hook_vertex(pl_ctx *x, float a, float b, float c, float d)
 
 int pl_hook_edgeflag(pl_ctx *x, GLboolean flag);
 int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
-int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv);
+/* fv or iv holds `given` values (1 for glMaterialf/i, which the driver pads with zeros). */
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv, int given);
 int pl_hook_array_element(pl_ctx *x, GLint i);
 
 /* Fills p with the vertices of an array draw (type 0: first .. first + count - 1, else count

@@ -250,7 +250,8 @@ static void scene_dlist_beginend(pt_run *r)
 }
 
 /* Calls GL allows inside glBegin/glEnd that the capture does not represent (a packed colour,
- * a colour index, an integer attribute), glCallLists inside a primitive with a list base, and
+ * a colour index, an integer attribute), the scalar glMaterial forms there, glCallLists inside
+ * a primitive with a list base, and
  * inside a primitive compiled into a list a query (legal: nothing runs yet) and a list command
  * (an error at once, not compiled) (piglit's gl-1.0-beginend-coverage). */
 static void scene_beginend_calls(pt_run *r)
@@ -258,6 +259,7 @@ static void scene_beginend_calls(pt_run *r)
     static const GLubyte one = 1;
     GLuint l = glGenLists(2);
     GLint index = -1;
+    float shininess = 0;
     pt_begin_frame();
     glNewList(l, GL_COMPILE);
     glColor4fv(green);
@@ -265,6 +267,10 @@ static void scene_beginend_calls(pt_run *r)
     glBegin(GL_QUADS);
     for (int i = 0; i < 4; i++) {
         glColor4fv(QC[i]);
+        if (i == 0) { /* the scalar forms give one value (the driver reads past it for ambient) */
+            glMateriali(GL_FRONT, GL_SHININESS, 20);
+            glMaterialf(GL_BACK, GL_AMBIENT, 0.5f);
+        }
         if (i == 1) {
             glIndexf(1.0f);
             glVertexAttribI4i(3, 1, 2, 3, 4);
@@ -274,6 +280,8 @@ static void scene_beginend_calls(pt_run *r)
     }
     glEnd();
     value_error(r);
+    glGetMaterialfv(GL_FRONT, GL_SHININESS, &shininess);
+    pt_value(r, (uint32_t)shininess);
     glListBase(l - 1);
     glBegin(GL_QUADS);
     glCallLists(1, GL_UNSIGNED_BYTE, &one); /* list l: green */
