@@ -87,14 +87,19 @@ static int tiles(qgl__verts *v, int n, float fill)
 
 /* ---- the measurement ------------------------------------------------------------------------- */
 
-typedef struct saved {
-    GLint draw_fb, read_fb, rb, program, vao, vbo;
-} saved;
-
-/* Caps that change what a draw costs; off for the measurement (PushAttrib keeps the app's). */
+/* Caps that change what a draw costs; off for the measurement (PushAttrib keeps the app's,
+ * but for the last three: primitive restart and rasterizer discard belong to no attribute
+ * group, and Mesa's glPopAttrib does not put colour sum back, so they are saved apart). */
 static const GLenum caps_off[] = {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_BLEND, GL_ALPHA_TEST, GL_SCISSOR_TEST,
                                   GL_CULL_FACE, GL_LIGHTING, GL_FOG, GL_COLOR_LOGIC_OP, GL_POLYGON_OFFSET_FILL,
                                   GL_COLOR_SUM, GL_PRIMITIVE_RESTART, GL_RASTERIZER_DISCARD};
+#define NCAPS (sizeof caps_off / sizeof caps_off[0])
+#define NUNSAVED 3
+
+typedef struct saved {
+    GLint draw_fb, read_fb, rb, program, vao, vbo;
+    GLboolean unsaved[NUNSAVED]; /* the last caps of caps_off, as the application had them */
+} saved;
 static const GLenum textures_off[] = {GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP,
                                       GL_TEXTURE_RECTANGLE};
 
@@ -121,6 +126,8 @@ static void enter(qgl_context *ctx, saved *s)
     gl->GetIntegerv(GL_CURRENT_PROGRAM, &s->program);
     gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
     gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->vbo);
+    for (size_t i = 0; i < NUNSAVED; i++)
+        s->unsaved[i] = gl->IsEnabled(caps_off[NCAPS - NUNSAVED + i]);
     gl->PushAttrib(GL_ALL_ATTRIB_BITS);
     gl->PushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
     static const GLenum stacks[2] = {GL_PROJECTION, GL_MODELVIEW};
@@ -129,14 +136,16 @@ static void enter(qgl_context *ctx, saved *s)
         gl->PushMatrix();
         gl->LoadIdentity();
     }
-    for (size_t i = 0; i < sizeof caps_off / sizeof caps_off[0]; i++)
+    for (size_t i = 0; i < NCAPS; i++)
         gl->Disable(caps_off[i]);
     for (GLint i = 0; i < ctx->max_clip_planes; i++)
         gl->Disable(GL_CLIP_PLANE0 + (GLenum)i);
-    if (ctx->has_arb_programs) {
+    if (ctx->has_arb_vp)
         gl->Disable(GL_VERTEX_PROGRAM_ARB);
+    if (ctx->has_arb_fp)
         gl->Disable(GL_FRAGMENT_PROGRAM_ARB);
-    }
+    if (ctx->has_ati_fs)
+        gl->Disable(GL_FRAGMENT_SHADER_ATI);
     for (GLint u = 0; u < ctx->max_units; u++) {
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
         for (size_t t = 0; t < sizeof textures_off / sizeof textures_off[0]; t++)
@@ -159,6 +168,9 @@ static void leave(qgl_context *ctx, const saved *s)
     }
     gl->PopClientAttrib();
     gl->PopAttrib();
+    for (size_t i = 0; i < NUNSAVED; i++)
+        if (s->unsaved[i])
+            gl->Enable(caps_off[NCAPS - NUNSAVED + i]);
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fb);
     gl->BindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fb);
     gl->BindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->rb);

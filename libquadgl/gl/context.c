@@ -106,8 +106,10 @@ static int probe_driver(qgl_context *ctx, const qgl_gl_desc *d)
         gl->GetBooleanv(GL_QUADS_FOLLOW_PROVOKING_VERTEX_CONVENTION, &follow);
         ctx->quads_follow_pv = follow;
     }
-    ctx->has_arb_programs = qgl__has_extension(ctx, "GL_ARB_fragment_program") ||
-                            qgl__has_extension(ctx, "GL_ARB_vertex_program");
+    ctx->has_arb_vp = qgl__has_extension(ctx, "GL_ARB_vertex_program");
+    ctx->has_arb_fp = qgl__has_extension(ctx, "GL_ARB_fragment_program");
+    ctx->has_ati_fs = qgl__has_extension(ctx, "GL_ATI_fragment_shader");
+    ctx->has_pipelines = v >= 41 || qgl__has_extension(ctx, "GL_ARB_separate_shader_objects");
     gl->GetIntegerv(GL_MAX_TEXTURE_UNITS, &ctx->max_units);
     gl->GetIntegerv(GL_MAX_CLIP_PLANES, &ctx->max_clip_planes);
     int cap = d->max_glsl ? d->max_glsl : 1000;
@@ -171,7 +173,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
 {
     if (!ctx)
         return;
-    qgl__flush(ctx); /* inside its GL context, as the owner destroys it */
+    if (!ctx->gl_gone)
+        qgl__flush(ctx); /* inside its GL context, as the owner destroys it */
     if (qgl__tls_current == ctx)
         qgl__tls_current = NULL;
     qgl__programs_free(ctx);
@@ -179,7 +182,8 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     qgl__grid_free(ctx);
     free(ctx->arrays);
     if (ctx->has_vao) {
-        ctx->gl.DeleteVertexArrays(1, &ctx->vao);
+        if (!ctx->gl_gone)
+            ctx->gl.DeleteVertexArrays(1, &ctx->vao);
         qgl__stream_free(ctx);
     }
     qgl__verts_free(&ctx->cap);
@@ -197,6 +201,14 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     free(ctx->clip);
     free(ctx->path);
     free(ctx);
+}
+
+void qgl__gl_forget(qgl_context *ctx)
+{
+    if (!ctx)
+        return;
+    ctx->gl_gone = 1;
+    qgl_gl_destroy(ctx);
 }
 
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method)

@@ -3,7 +3,8 @@
  * The state is read once per batch (state.c: matrices, viewport, shade model, the
  * fixed-function key) and decides whether the shader path can reproduce it ("modelled").
  * Each quad is then planned:
- * polygon mode line/point and select/feedback render modes go to the driver as quads; in
+ * polygon mode line/point, select/feedback render modes and the application's own programs
+ * (GLSL, ARB, a pipeline: nothing of ours can run them) go to the driver as quads; in
  * AUTO a quad the diagonal split renders exactly (planar, attributes affine in object space)
  * or invisibly (bounding box under invisible_area_px, or a planar quad whose split differs from
  * the mean value interpolation by less than the output can show: split_invisible below) is
@@ -1069,7 +1070,8 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
 {
     if (!ensure((void **)&ctx->path, &ctx->path_cap, nq, 1))
         return 0;
-    int pass = st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL;
+    int pass = st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL ||
+               st->own_pipeline;
     if (pass || ctx->method == QGL_METHOD_SPLIT) {
         memset(ctx->path, pass ? QGL__P_PASS : QGL__P_SPLIT, nq);
         return 1;
@@ -1103,7 +1105,8 @@ static int needs_shaders(const unsigned char *path, size_t nq)
  * exact for all); counted as that path. */
 int qgl__native_path(qgl_context *ctx, const qgl__state *st, unsigned all_facts)
 {
-    if (st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL)
+    if (st->render_mode != GL_RENDER || st->polygon_mode[0] != GL_FILL || st->polygon_mode[1] != GL_FILL ||
+        st->own_pipeline)
         return QGL__P_PASS;
     if (ctx->method == QGL_METHOD_SPLIT ||
         (ctx->method == QGL_METHOD_AUTO && exact_by_facts(st, needed_facts(st), all_facts)))

@@ -382,6 +382,12 @@ typedef struct qgl__state {
     int clamp;                /* GL_CLAMP_VERTEX_COLOR */
     int first_vertex_pv;      /* GL_FIRST_VERTEX_CONVENTION, and quads follow it */
     int ffp_ok;               /* the key describes the state (the programs can reproduce it) */
+    int arb_program;          /* an ARB vertex or fragment program or an ATI fragment shader is
+                                 enabled (FFP group) */
+    GLint pipeline;           /* the program pipeline object bound (RASTER group) */
+    int own_pipeline;         /* the application's own programs replace fixed function (a GLSL
+                                 program or pipeline, ARB programs): the driver draws its quads
+                                 as they are, since no path of ours runs its programs */
     double mvp[16];           /* projection * modelview, column-major */
     double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
@@ -458,8 +464,10 @@ struct qgl_context {
     int ready;                /* context.c: the shader path compiled and the costs measured */
     int glsl120_ok;
     int has_vao;              /* GL >= 3.0: VAO + VBO drawing (else immediate replay) */
+    int gl_gone;              /* being freed while its GL context is gone or current elsewhere:
+                                 no GL call (qgl__gl_forget) */
     int quads_follow_pv;
-    int has_arb_programs;
+    int has_arb_vp, has_arb_fp, has_ati_fs, has_pipelines; /* programs that replace fixed function */
     GLint max_units, max_clip_planes;
     qgl_gl_stats_t stats;
 
@@ -633,6 +641,9 @@ void qgl__mesh_free(struct qgl__gl *gl, const void *owner, qgl__mesh *m);
  * it cannot be built (a warning is logged once). */
 GLuint qgl__program(qgl_context *ctx, const qgl__key *key);
 void qgl__programs_free(qgl_context *ctx);
+/* Frees ctx without a GL call, for a GL context destroyed while not current here: its GL
+ * objects go with it, or stay with its share group. */
+void qgl__gl_forget(qgl_context *ctx);
 /* Give the bound program prog the viewport's half size (u_px) if it changed since last set. */
 void qgl__program_viewport(qgl_context *ctx, GLuint prog, const GLint viewport[4]);
 /* Varying vec4 slots a key's programs pass per fragment; above 32 the driver may refuse. */

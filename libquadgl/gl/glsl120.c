@@ -318,9 +318,9 @@ void qgl__glsl120_free(qgl_context *ctx)
     struct qgl__glsl120 *g = ctx->glsl120;
     if (!g)
         return;
-    for (int i = 0; i < g->nprograms; i++)
+    for (int i = 0; i < g->nprograms && !ctx->gl_gone; i++)
         ctx->gl.DeleteProgram(g->programs[i].prog);
-    if (g->vao) {
+    if (g->vao && !ctx->gl_gone) {
         ctx->gl.DeleteVertexArrays(1, &g->vao);
     }
     free(g->buf);

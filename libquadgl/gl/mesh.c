@@ -11,7 +11,8 @@
  * draws as they are become one glMultiDrawArrays from the buffer, as the driver's own display
  * list would merge them (GL_QUADS as indexed triangles split 0-1-3, 1-2-3: what the driver's
  * display lists draw, where its immediate mode splits 0-1-2, 0-2-3; a smooth non-affine quad
- * shows which), and only the quad primitives that need smoothing go through the planner (qgl__draw_batch with the cached facts). Order is kept throughout (blending and
+ * shows which; in polygon mode line or point as quads, whose outlines and edge flags the
+ * driver's lists keep), and only the quad primitives that need smoothing go through the planner (qgl__draw_batch with the cached facts). Order is kept throughout (blending and
  * equal depths make it visible). Primitives with glMaterial calls inside, and meshes with
  * generic attributes, are replayed through immediate mode, the only way to give those per
  * vertex to fixed function. */
@@ -220,15 +221,16 @@ static void point(qgl_context *ctx, const qgl__mesh *m)
     ctx->material_arrays = 0;
 }
 
-/* Primitives [i0, i1), all the driver's as they are, in as few calls as their modes allow. */
-static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1)
+/* Primitives [i0, i1), all the driver's as they are, in as few calls as their modes allow
+ * (filled: both faces' polygon mode is GL_FILL). */
+static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1, int filled)
 {
     while (i0 < i1) {
         size_t j = i0;
         GLenum mode = m->prim[i0].mode;
         while (j < i1 && m->prim[j].mode == mode)
             j++;
-        if (mode == GL_QUADS) { /* consecutive, so are their indices */
+        if (mode == GL_QUADS && filled) { /* consecutive, so are their indices */
             size_t n = 6 * ((size_t)m->prim[j - 1].idx0 / 6 + m->prim[j - 1].count / 4 - m->prim[i0].idx0 / 6);
             ctx->gl.DrawElements(GL_TRIANGLES, (GLsizei)n, GL_UNSIGNED_INT,
                                  (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)m->prim[i0].idx0));
@@ -359,7 +361,7 @@ static int draw_in_order(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, c
                 break;
             if (!pointed)
                 point(ctx, m), pointed = 1;
-            draw_run(ctx, m, run, i);
+            draw_run(ctx, m, run, i, st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL);
             *touched = 1;
         }
         run = i + 1;
@@ -381,8 +383,9 @@ static int draw_in_order(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, c
     return quads;
 }
 
-/* Native primitives (ways[i] == 0) of one mode in one multi-draw. */
-static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode)
+/* Native primitives (ways[i] == 0) of one mode in one multi-draw (GL_QUADS as the driver's
+ * lists split them where filled, as quads where outlined). */
+static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode, int filled)
 {
     size_t n = 0;
     for (size_t i = 0; i < m->nprim; i++)
@@ -399,10 +402,10 @@ static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode)
         if (ctx->ways[i] || p->mode != mode)
             continue;
         ctx->multi_first[n] = (GLint)p->first;
-        ctx->multi_count[n] = (GLsizei)(mode == GL_QUADS ? 6 * (p->count / 4) : p->count);
+        ctx->multi_count[n] = (GLsizei)(mode == GL_QUADS && filled ? 6 * (p->count / 4) : p->count);
         ctx->multi_offset[n++] = (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)p->idx0);
     }
-    if (mode == GL_QUADS)
+    if (mode == GL_QUADS && filled)
         ctx->gl.MultiDrawElements(GL_TRIANGLES, ctx->multi_count, GL_UNSIGNED_INT, ctx->multi_offset, (GLsizei)n);
     else
         ctx->gl.MultiDrawArrays(mode, ctx->multi_first, ctx->multi_count, (GLsizei)n);
@@ -433,7 +436,7 @@ static int draw_by_kind(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, co
         point(ctx, m);
         *touched = 1;
         for (GLenum mode = GL_POINTS; mode <= GL_TRIANGLE_STRIP_ADJACENCY; mode++)
-            draw_mode(ctx, m, mode);
+            draw_mode(ctx, m, mode, st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL);
     }
     if (grouped > 1 && draw_group(ctx, st, m, 0, m->nprim, ctx->ways)) {
         for (size_t i = 0; i < m->nprim; i++)

@@ -1050,7 +1050,7 @@ void qgl__program_viewport(qgl_context *ctx, GLuint prog, const GLint viewport[4
 void qgl__programs_free(qgl_context *ctx)
 {
     for (int i = 0; i < ctx->nprograms; i++)
-        if (ctx->programs[i].prog)
+        if (ctx->programs[i].prog && !ctx->gl_gone)
             ctx->gl.DeleteProgram(ctx->programs[i].prog);
     ctx->nprograms = 0;
     ctx->next_evict = 0;

@@ -7,9 +7,12 @@
  * normal scaling, every texture unit's target, texgen modes, environment with its COMBINE
  * state and the texture's base format, fog, colour sum, clip planes). The result is the key
  * of shader.c, with every field that cannot change the picture left zero so that equal
- * pictures share a program. A state the programs do not reproduce (an application program,
- * ARB programs, an env mode or COMBINE source outside GL 1.4's, a depth texture, units past
- * QGL_MAX_TEXUNITS, too many varyings) clears "modelled" and its quads take the CPU fallback.
+ * pictures share a program. A state the programs do not reproduce (an env mode or COMBINE
+ * source outside GL 1.4's, a depth texture, units past QGL_MAX_TEXUNITS, too many varyings)
+ * clears "modelled" and its quads take the CPU fallback, which draws through the driver's
+ * fixed function; the application's own programs (a GLSL program or pipeline, ARB vertex or
+ * fragment programs, an ATI fragment shader) replace fixed function, so their quads go to the
+ * driver as they are ("own_pipeline").
  * The planner also learns whether the per-vertex results are affine in the captured
  * attributes (unlit or flat, linear texgen only): only then can the diagonal split be exact.
  * Parameters (light colours, planes, fog distances...) are not read: the programs take them
@@ -377,7 +380,10 @@ static int query_ffp(qgl_context *ctx, qgl__state *st)
             else
                 k->clip |= (uint8_t)(1u << i);
         }
-    if (ctx->has_arb_programs && (gl->IsEnabled(GL_VERTEX_PROGRAM_ARB) || gl->IsEnabled(GL_FRAGMENT_PROGRAM_ARB)))
+    st->arb_program = (ctx->has_arb_vp && gl->IsEnabled(GL_VERTEX_PROGRAM_ARB)) ||
+                      (ctx->has_arb_fp && gl->IsEnabled(GL_FRAGMENT_PROGRAM_ARB)) ||
+                      (ctx->has_ati_fs && gl->IsEnabled(GL_FRAGMENT_SHADER_ATI));
+    if (st->arb_program)
         ok = 0;
     /* the worst case of this state's programs (smooth, non-planar) must fit the varyings */
     qgl__key worst = *k;
@@ -394,9 +400,11 @@ static void query_raster(qgl_context *ctx, qgl__state *st)
     struct qgl__gl *gl = &ctx->gl;
     gl->GetIntegerv(GL_RENDER_MODE, &st->render_mode);
     gl->GetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
-    st->program = 0;
+    st->program = st->pipeline = 0;
     if (ctx->version >= 20)
         gl->GetIntegerv(GL_CURRENT_PROGRAM, &st->program);
+    if (ctx->has_pipelines && !st->program) /* a bound program wins over the pipeline */
+        gl->GetIntegerv(GL_PROGRAM_PIPELINE_BINDING, &st->pipeline);
     gl->GetIntegerv(GL_SHADE_MODEL, &st->shade_model);
     gl->GetIntegerv(GL_ACTIVE_TEXTURE, &st->active_texture);
     st->polygon_offset = gl->IsEnabled(GL_POLYGON_OFFSET_FILL);
@@ -473,10 +481,11 @@ static void derive(qgl_context *ctx, qgl__state *st)
     st->tex_replace = u0->env == QGL__E_REPLACE;
     st->tex_no_alpha = u0->format == QGL__F_RGB;
     st->simple = simple(&st->ffp);
-    st->modelled = ctx->shader_level && st->ffp_ok && st->program == 0 && st->clamp &&
+    st->own_pipeline = st->program != 0 || st->pipeline != 0 || st->arb_program;
+    st->modelled = ctx->shader_level && st->ffp_ok && !st->own_pipeline && st->clamp &&
                    (ctx->shader_level == 150 || st->simple);
-    st->nonaffine = st->program != 0 || !st->ffp_ok || nonaffine(st); /* unknown work: assume the worst */
-    st->lit_by_inputs = st->program == 0 && st->ffp_ok && lit_by_inputs(st);
+    st->nonaffine = st->own_pipeline || !st->ffp_ok || nonaffine(st); /* unknown work: assume the worst */
+    st->lit_by_inputs = !st->own_pipeline && st->ffp_ok && lit_by_inputs(st);
     st->pv_material = 0;
 }
 

@@ -23,7 +23,8 @@ static void stream_release(qgl_context *ctx)
     qgl__stream *s = &ctx->stream;
     if (!s->buf)
         return;
-    ctx->gl.DeleteBuffers(1, &s->buf);
+    if (!ctx->gl_gone)
+        ctx->gl.DeleteBuffers(1, &s->buf);
     s->buf = 0;
     s->map = NULL;
 }
@@ -31,9 +32,11 @@ static void stream_release(qgl_context *ctx)
 static void pool_drop(qgl_context *ctx, int i)
 {
     qgl__stream *s = &ctx->stream;
-    ctx->gl.DeleteBuffers(1, &s->pool[i].buf);
-    if (s->pool[i].done)
-        ctx->gl.DeleteSync(s->pool[i].done);
+    if (!ctx->gl_gone) {
+        ctx->gl.DeleteBuffers(1, &s->pool[i].buf);
+        if (s->pool[i].done)
+            ctx->gl.DeleteSync(s->pool[i].done);
+    }
     memmove(s->pool + i, s->pool + i + 1, (size_t)(--s->npool - i) * sizeof *s->pool);
 }
 

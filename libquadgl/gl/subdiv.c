@@ -80,7 +80,8 @@ void qgl__grid_free(qgl_context *ctx)
     struct qgl__grid *g = ctx->grid;
     if (!g)
         return;
-    ctx->gl.DeleteVertexArrays(1, &g->vao);
+    if (!ctx->gl_gone)
+        ctx->gl.DeleteVertexArrays(1, &g->vao);
     free(g->k);
     free(g->verts);
     free(g->idx);

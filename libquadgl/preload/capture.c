@@ -13,7 +13,12 @@
  * many vertices one glBegin/glEnd holds. Misuse keeps the driver's errors: a call GL forbids
  * inside glBegin/glEnd (another glBegin, a state change, a query) makes the driver report
  * GL_INVALID_OPERATION through a glEnd it sees with no glBegin, and has no other effect; a
- * glEnd with no glBegin is the driver's own; vertices outside go to the driver. */
+ * glEnd with no glBegin is the driver's own; vertices outside go to the driver. A display
+ * list called inside the primitive runs its calls there, and only the driver can run the
+ * calls of its segments (lists.c) in a primitive, legal ones and errors alike: the driver then
+ * takes over the primitive (pl_cap_to_driver: glBegin and the vertices so far), and the rest
+ * reaches it as the program's calls. So does a primitive a list leaves open at glEndList
+ * (legal under GL_COMPILE): its calls are compiled into the list as they came. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -31,6 +36,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->nmat = 0;
     p->lost = 0;
     p->from_arrays = 0;
+    p->in_list = 0;
     memset(p->first, 0, sizeof p->first);
     p->cur_edge = GL_TRUE;
 }
@@ -267,8 +273,10 @@ static void pl_push_material(pl_ctx *x, GLenum face, GLenum pname, const float *
     memcpy(m->v, v, (size_t)n * sizeof *v);
 }
 
-/* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. */
-int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv)
+/* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. The
+ * scalar forms give one value, which the driver takes unconverted for any parameter (what it
+ * reads past it is undefined; here zeros). */
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv, int given)
 {
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
@@ -280,8 +288,8 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
-    for (int i = 0; i < n; i++)
-        v[i] = fv ? fv[i] : (n == 4) ? PL_I(iv[i]) : (float)iv[i];
+    for (int i = 0; i < n && i < given; i++)
+        v[i] = fv ? fv[i] : (n == 4 && given == 4) ? PL_I(iv[i]) : (float)iv[i];
     pl_push_material(x, face, pname, v, n);
     return 1;
 }
@@ -373,9 +381,11 @@ PL_EXPORT void glBegin(GLenum mode)
     /* In a list every primitive is ours (the list's geometry); outside, only quads. */
     if ((!quad && !(x->compiling && pl_valid_mode(mode))) || x->native_begin) {
         pl_batch_flush(x);
-        if (x->compiling)
+        if (x->compiling && pl_valid_mode(mode))
+            pl_list_begin_end(x, 1);
+        else if (x->compiling)
             pl_list_state(x);
-        if (!x->native_begin && pl_valid_mode(mode))
+        if (pl_valid_mode(mode) && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE))
             x->native_begin = 1;
         REAL(glBegin)(mode);
         return;
@@ -385,23 +395,48 @@ PL_EXPORT void glBegin(GLenum mode)
     pl_update_slow(x);
 }
 
-/* The current attributes after glEnd are the last ones the primitive gave. */
+/* The current attributes after glEnd are the last ones the primitive gave (a list's geometry
+ * keeps its own: lists.c). */
 static void pl_note_prim_current(pl_ctx *x, const pl_prim *p)
 {
     for (int a = 0; a < QGL__NATTR; a++)
         if (p->v.mask & (1u << a))
             pl_note_current(x, a, p->cur[a]);
-    if (p->v.mask & QGL__A_EDGE)
-        pl_hook_edgeflag(x, p->cur_edge);
+    if ((p->v.mask & QGL__A_EDGE) && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE)) {
+        x->cur_edge = p->cur_edge;
+        x->cur_known |= QGL__A_EDGE;
+    }
+}
+
+void pl_cap_to_driver(pl_ctx *x)
+{
+    pl_prim *p = &x->prim;
+    x->capturing = 0;
+    pl_batch_flush(x); /* what came before goes first */
+    pl_update_slow(x);
+    if (x->compiling && x->compile_mode == GL_COMPILE_AND_EXECUTE)
+        pl_list_defer(x);
+    if (x->compiling)
+        pl_list_begin_end(x, 1);
+    pl_prim_to_driver(x, p);
+    if (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE) {
+        x->native_begin = 1;
+        pl_count_passthrough(pl_prim_quads(p));
+        pl_note_prim_current(x, p);
+    }
 }
 
 PL_EXPORT void glEnd(void)
 {
     pl_ctx *x = pl_tls_ctx;
     if (!x || !x->capturing) {
-        if (x)
+        if (x && x->compiling)
+            pl_list_begin_end(x, 0);
+        if (x && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE))
             x->native_begin = 0;
         REAL(glEnd)();
+        if (x && x->compiling)
+            pl_list_end_prim(x);
         return;
     }
     x->capturing = 0;

@@ -79,6 +79,7 @@ void pl_ctx_created(int api, void *handle, int share_api, void *share_handle)
 
 static void pl_ctx_free(pl_ctx *x)
 {
+    qgl__gl_forget(x->qgl);
     pl_prim_free(&x->prim);
     pl_prim_free(&x->scratch);
     pl_prim_free(&x->batch);
@@ -100,16 +101,20 @@ static void pl_retire_locked(pl_ctx *x)
         pl_ctx_free(x);
 }
 
-/* Drops the GL path's context; its GL objects can only be deleted while x is current. */
+/* Drops the GL path's context; its GL objects can only be deleted while x is current here
+ * (else they go with the GL context, or stay with its share group). Current on another
+ * thread, it is freed when that thread lets x go (pl_ctx_free). */
 static void pl_drop_qgl(pl_ctx *x, int is_current)
 {
     if (x->qgl && is_current) {
         qgl_gl_make_current(NULL);
         qgl_gl_destroy(x->qgl);
-    } else if (x->qgl) {
-        pl_log(PL_LOG_DEBUG, "context destroyed while not current: its GL path state is leaked");
+        x->qgl = NULL;
+    } else if (x->qgl && !x->bound) {
+        pl_log(PL_LOG_DEBUG, "context destroyed while not current: its GL path's objects go with it");
+        qgl__gl_forget(x->qgl);
+        x->qgl = NULL;
     }
-    x->qgl = NULL;
 }
 
 void pl_ctx_destroyed(int api, void *handle)

@@ -5,13 +5,13 @@
  * that part of the state, and with the glMaterial calls made between glBegin and glEnd: the
  * driver's own drawing of split quads takes them at their vertex, the GL path's from the quad
  * that holds it. Whatever the GL path cannot take, or when there is
- * none (QUADGL_METHOD=replay, no GL path built, its context failed, an application program is
+ * none (QUADGL_METHOD=replay, no GL path built, its context failed, a GLSL or ARB program is
  * bound, a texture unit beyond the batch's), is replayed to the driver as the very calls it
  * would have seen: glBegin, the attributes given per vertex (edge flags and generic
  * attributes included), glVertex4fv, glEnd. Either way the current attributes end as GL
  * leaves them: the last values given inside glBegin/glEnd, or for an array draw (and an
  * evaluator mesh) the values from before it. (Display lists keep their geometry as meshes of
- * the GL layer: lists.c.) */
+ * the GL layer: lists.c; a list's primitive replayed here is drawn as the driver's lists draw.) */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -49,28 +49,59 @@ static void pl_apply_material(const pl_material *m)
     REAL(glMaterialfv)(m->face, m->pname, m->v);
 }
 
-/* The driver draws vertices [v0, v1) itself, with the materials that fall among them. */
-static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
+int pl_polygons_filled(void)
 {
+    GLint mode[2] = {GL_FILL, GL_FILL};
+    REAL(glGetIntegerv)(GL_POLYGON_MODE, mode);
+    return mode[0] == GL_FILL && mode[1] == GL_FILL;
+}
+
+/* The driver gets vertices [v0, v1) of p, with the materials that fall among them; with
+ * list_split, GL_QUADS as the triangles 0-1-3, 1-2-3 of each quad, every vertex with its own
+ * values (p was back-filled). */
+static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, size_t *mat, int list_split)
+{
+    static const int split[6] = {0, 1, 3, 1, 2, 3};
     struct qgl__gl *gl = pl_gl();
     const qgl__verts *v = &p->v;
-    REAL(glBegin)(p->mode);
-    for (size_t i = v0; i < v1; i++) {
+    size_t n = list_split ? 6 * ((v1 - v0) / 4) : v1 - v0;
+    for (size_t j = 0; j < n; j++) {
+        size_t i = list_split ? v0 + 4 * (j / 6) + (size_t)split[j % 6] : v0 + j;
+        size_t given = list_split ? 0 : i; /* compared with the first vertex giving a value */
         for (; *mat < p->nmat && p->mat[*mat].vertex <= i; ++*mat)
             pl_apply_material(&p->mat[*mat]);
         for (int a = 0; a < QGL__NATTR; a++)
-            if ((v->mask & (1u << a)) && i >= p->first[a])
+            if ((v->mask & (1u << a)) && given >= p->first[a])
                 qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
-        if ((v->mask & QGL__A_EDGE) && i >= p->first[QGL__NATTR])
+        if ((v->mask & QGL__A_EDGE) && given >= p->first[QGL__NATTR])
             gl->EdgeFlag(v->edge[i]);
         for (unsigned g = p->generic_given; g; g &= g - 1) {
             int k = __builtin_ctz(g);
-            if (i >= p->generic_first[k])
+            if (given >= p->generic_first[k])
                 gl->VertexAttrib4fv((GLuint)k, p->generic[k] + 4 * i);
         }
         gl->Vertex4fv(v->pos + 4 * i);
     }
+}
+
+/* The driver draws vertices [v0, v1) itself; a display list's GL_QUADS as its own lists draw
+ * them when the polygons are filled (lists.c). */
+static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
+{
+    int split = p->in_list && p->mode == GL_QUADS && pl_polygons_filled();
+    REAL(glBegin)(split ? GL_TRIANGLES : p->mode);
+    pl_replay_vertices(p, v0, v1, mat, split);
     REAL(glEnd)();
+}
+
+void pl_prim_to_driver(pl_ctx *x, const pl_prim *p)
+{
+    size_t mat = 0;
+    REAL(glBegin)(p->mode);
+    pl_replay_vertices(p, 0, p->v.n, &mat, 0);
+    for (; mat < p->nmat; mat++)
+        pl_apply_material(&p->mat[mat]);
+    pl_prim_apply_current(x, p);
 }
 
 void pl_prim_emit(pl_ctx *x, const pl_prim *p)
@@ -132,7 +163,7 @@ int pl_prim_for_driver(pl_ctx *x, const pl_prim *p)
     qgl_context *qgl;
     if (pl_cfg.replay || p->lost || !(qgl = pl_ctx_qgl(x)))
         return 1;
-    return qgl__state_now(qgl)->program != 0;
+    return qgl__state_now(qgl)->own_pipeline;
 }
 
 void pl_draw_prim(pl_ctx *x, pl_prim *p)
@@ -271,13 +302,15 @@ void pl_batch_flush(pl_ctx *x)
         pl_replay_range(b, 0, n, &mat);
         pl_count_passthrough(n / 4);
         b->v.n = 0;
-    } else if (flags & QGL__DRAW_ARRAYS) {
-        /* GL leaves the current values of arrayed attributes undefined after a draw: they are
-         * put back to the ones the calls left (known: a call that could change them unseen
-         * would have drawn the batch first). */
-        for (int a = 0; a < QGL__NATTR; a++)
-            if ((v.mask & (1u << a)) && (x->cur_known & (1u << a)))
-                qgl__set_current(pl_gl(), a, x->cur[a]);
     }
+    /* A replay left the batch's last values current, an array draw undefined ones; the program
+     * has set its own since: they are put back (known: a call that could change them unseen
+     * would have drawn the batch first). */
+    struct qgl__gl *gl = pl_gl();
+    for (int a = 0; a < QGL__NATTR; a++)
+        if ((v.mask & (1u << a)) && (x->cur_known & (1u << a)))
+            qgl__set_current(gl, a, x->cur[a]);
+    if ((v.mask & QGL__A_EDGE) && (x->cur_known & QGL__A_EDGE))
+        gl->EdgeFlag(x->cur_edge);
     b->v.mask = 0;
 }

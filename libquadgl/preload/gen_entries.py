@@ -16,7 +16,8 @@ its body is written by hand in C, an exported wrapper of one of two kinds:
   attributes); pure state queries mark nothing.
 
 Inside a captured glBegin/glEnd a call GL does not allow there raises the driver's own
-GL_INVALID_OPERATION and has no other effect, as it would natively.
+GL_INVALID_OPERATION and has no other effect, as it would natively; a call GL allows there
+that the capture does not represent (UNCAPTURED) hands the primitive to the driver first.
 
 Usage: gen_entries.py PROTOS OUT.h OUT.c, PROTOS being the preprocessed GL headers (gl.h and
 glext.h with GL_GLEXT_PROTOTYPES).
@@ -38,7 +39,7 @@ TYPES = {
 
 # Dirty groups (preload.h's PL_D_*), by name in RULES.
 GROUPS = {'XFORM': 'PL_D_XFORM', 'RASTER': 'PL_D_RASTER', 'FFP': 'PL_D_FFP', 'BIND': 'PL_D_BIND', 'ORDER': 'PL_D_ORDER',
-          'CURRENT': 'PL_D_CURRENT'}
+          'CURRENT': 'PL_D_CURRENT', 'LIST_BASE': 'PL_D_LIST_BASE'}
 
 # What a call may change, first match wins. None: a pure query of state (nothing to mark, no
 # pending quads to draw first); '': no tracked state, but the call may see the picture.
@@ -46,7 +47,7 @@ RULES = [
     (r'^gl(Get|Is)(?!n?(Compressed)?Tex(ture)?(Sub)?Image|(Named)?BufferSubData|Query(Object|Buffer|Indexed)|'
      r'Sync|n?ColorTable|n?Histogram|n?Minmax|n?Convolution|n?Separable)', None),
     (r'^gl(Uniform|ProgramUniform)', None),
-    (r'^glPopAttrib$', 'XFORM RASTER FFP ORDER CURRENT'),
+    (r'^glPopAttrib$', 'XFORM RASTER FFP ORDER CURRENT LIST_BASE'),
     (r'^gl(DepthMask|DepthFunc|BindFramebuffer(EXT)?)$', 'ORDER'),
     (r'^gl(Enablei|Disablei|EnableIndexedEXT|DisableIndexedEXT)$', 'FFP ORDER'),
     (r'^gl(LoadIdentity|(Load|Mult)(Transpose)?Matrix[fd](ARB)?|Rotate[fd]|Translate[fd]|Scale[fd]|Frustum|Ortho|'
@@ -61,6 +62,15 @@ RULES = [
     (r'^gl(Draw|MultiDraw)', 'CURRENT'),
     (r'^gl', ''),
 ]
+
+
+# Calls GL allows between glBegin and glEnd that the capture does not represent: colour
+# indices, integer, double and packed attributes, half floats. Inside a captured primitive the
+# driver takes the primitive over first (pl_touch_uncaptured).
+UNCAPTURED = re.compile(r'^gl(Index(d|f|i|s|ub)v?|VertexAttrib[IL][1-4]\w*|VertexAttribP[1-4]uiv?|'
+                        r'(Vertex|TexCoord|MultiTexCoord|Normal|Color|SecondaryColor)P[1-4]uiv?|'
+                        r'(Vertex|Normal|Color|TexCoord|MultiTexCoord|FogCoord|SecondaryColor|VertexAttribs?|'
+                        r'VertexWeight)[1-4]?hv?NV)$')
 
 
 def mask_of(name):
@@ -199,18 +209,18 @@ for suffix_now in ('', 'ARB'):
 suffix_now = ''
 
 hook_entry('glMaterialf', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLfloat', 'param')],
-           'pl_hook_material(cx, face, pname, &param, NULL)')
+           'pl_hook_material(cx, face, pname, &param, NULL, 1)')
 hook_entry('glMaterialfv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLfloat *', 'params')],
-           'pl_hook_material(cx, face, pname, params, NULL)')
+           'pl_hook_material(cx, face, pname, params, NULL, 4)')
 hook_entry('glMateriali', [('GLenum', 'face'), ('GLenum', 'pname'), ('GLint', 'param')],
-           'pl_hook_material(cx, face, pname, NULL, &param)')
+           'pl_hook_material(cx, face, pname, NULL, &param, 1)')
 hook_entry('glMaterialiv', [('GLenum', 'face'), ('GLenum', 'pname'), ('const GLint *', 'params')],
-           'pl_hook_material(cx, face, pname, NULL, params)')
+           'pl_hook_material(cx, face, pname, NULL, params, 4)')
 hook_entry('glArrayElement', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
 hook_entry('glArrayElementEXT', [('GLint', 'i')], 'pl_hook_array_element(cx, i)')
 
 # Written by hand in C (their bodies live in capture.c, arrays.c, lists.c, eval.c, track.c).
-MANUAL = ['glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists', 'glDeleteLists',
+MANUAL = ['glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists', 'glDeleteLists', 'glListBase',
           'glDrawArrays', 'glDrawArraysEXT', 'glDrawElements', 'glDrawRangeElements', 'glDrawRangeElementsEXT',
           'glMultiDrawArrays', 'glMultiDrawArraysEXT', 'glMultiDrawElements', 'glMultiDrawElementsEXT',
           'glEvalMesh2', 'glEvalCoord1f', 'glEvalCoord1d', 'glEvalCoord1fv', 'glEvalCoord1dv', 'glEvalCoord2f',
@@ -306,6 +316,8 @@ def main():
             c.append('    pl_ctx *cx = pl_tls_ctx;')
             c.append(f'    if (PL_UNLIKELY(cx != NULL) && {body})')
             c.append('        return;')
+        elif UNCAPTURED.match(name):
+            c.append('    pl_touch_uncaptured();')
         else:
             mask = mask_of(name)
             if mask is None:

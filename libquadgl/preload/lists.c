@@ -19,8 +19,13 @@
  * current value of an attribute (given in the list only later) are filled when the list runs;
  * after a geometry item the current attributes are the last ones it gave, as GL leaves them.
  * Primitives with generic attributes, or that the capture cannot represent, stay primitives
- * of their own, replayed to the driver. Objects live in the share group of the contexts (a
- * sorted array by name under a mutex) and are reference counted while they run. */
+ * of their own, replayed to the driver. GL lets a list begin a primitive and another end it,
+ * and a list be called inside glBegin/glEnd: a segment remembers whether its calls leave the
+ * driver inside a glBegin or outside, and a list run inside the driver's glBegin draws none of
+ * its own primitives there but raises GL_INVALID_OPERATION, as the driver's lists do. (Under
+ * GL_COMPILE_AND_EXECUTE such a primitive is compiled only, and run when it ends: the driver
+ * cannot begin or end a segment inside its glBegin.) Objects live in the share group of the
+ * contexts (a sorted array by name under a mutex) and are reference counted while they run. */
 #include "preload.h"
 
 #include <stdlib.h>
@@ -47,6 +52,8 @@ typedef struct pl_item {
     int kind;
     GLuint name;       /* segment: the driver's list; call: the list called */
     unsigned mask;     /* segment: what its calls change (track.c's PL_D_*) */
+    int begins;        /* segment: its calls leave the driver inside a glBegin (1), outside (2),
+                          or neither begin nor end one (0) */
     pl_geom *geom;     /* PL_ITEM_GEOMETRY */
     pl_prim prim;      /* PL_ITEM_PRIM */
     uint32_t *names;   /* PL_ITEM_CALLS: the names given, the base added when it runs */
@@ -60,6 +67,10 @@ struct pl_list {
     size_t n, cap;
     int refs;
     int open;          /* while compiling: 0 nothing, 1 a segment, 2 the last item's geometry */
+    int begins;        /* while compiling: the open segment's begins */
+    size_t defer;      /* while compiling under GL_COMPILE_AND_EXECUTE: 1 + the first item of a
+                          primitive the driver took over, compiled only and run at its glEnd
+                          (the driver cannot begin or end a list inside its glBegin) */
 };
 
 struct pl_share {
@@ -242,14 +253,17 @@ static void pl_list_close(pl_ctx *x)
     pl_item *it = l->n ? &l->items[l->n - 1] : NULL;
     if (l->open == 1) {
         REAL(glEndList)();
-        if (it && it->kind == PL_ITEM_SEGMENT)
+        if (it && it->kind == PL_ITEM_SEGMENT) {
             it->mask |= x->seg_dirty;
+            it->begins = l->begins ? l->begins : it->begins;
+        }
     } else if (l->open == 2 && it && it->geom && !qgl__mesh_finish(&it->geom->m)) {
         pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
         it->geom->m.nprim = 0;
     }
     x->seg_dirty = 0;
     l->open = 0;
+    l->begins = 0;
 }
 
 void pl_list_state(pl_ctx *x)
@@ -265,6 +279,37 @@ void pl_list_state(pl_ctx *x)
     }
     REAL(glNewList)(sub, x->compile_mode);
     l->open = 1;
+}
+
+void pl_list_begin_end(pl_ctx *x, int inside)
+{
+    pl_list_state(x);
+    x->compiling->begins = inside ? 1 : 2;
+}
+
+static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int depth);
+
+void pl_list_defer(pl_ctx *x)
+{
+    pl_list *l = x->compiling;
+    pl_list_close(x);
+    l->defer = l->n + 1;
+    x->compile_mode = GL_COMPILE;
+}
+
+/* The deferred primitive's items run now (no segment is open: the driver only runs them). */
+void pl_list_end_prim(pl_ctx *x)
+{
+    pl_list *l = x->compiling;
+    size_t from;
+    if (!l->defer)
+        return;
+    pl_list_close(x);
+    from = l->defer - 1;
+    l->defer = 0;
+    x->compile_mode = GL_COMPILE_AND_EXECUTE;
+    pl_items_exec(x, l, from, l->n, 1);
+    x->cur_known = 0;
 }
 
 /* The open geometry item (opened after closing a segment); NULL without memory. */
@@ -303,7 +348,8 @@ void pl_list_attrib(pl_ctx *x, int slot, const float v[4])
 static void pl_geom_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge)
 {
     if (a == QGL__NATTR) {
-        memset(v->edge + from, edge, to - from);
+        if (to > from)
+            memset(v->edge + from, edge, to - from);
         return;
     }
     int k = qgl__attribs[a].floats;
@@ -321,7 +367,8 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
     unsigned old = m->mask, mask = old | p->v.mask | (g->set & (QGL__A_ATTRIBS | QGL__A_EDGE));
     if (!qgl__verts_reserve(m, base + n, mask))
         return 0;
-    memcpy(m->pos + 4 * base, p->v.pos, 16 * n);
+    if (n) /* a primitive with no vertex may have no arrays at all */
+        memcpy(m->pos + 4 * base, p->v.pos, 16 * n);
     for (int a = 0; a <= QGL__NATTR; a++) {
         unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
         if (!(mask & bit))
@@ -337,11 +384,13 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
         if (!given)
             continue;
         if (a == QGL__NATTR) {
-            memcpy(m->edge + base + from, p->v.edge + from, n - from);
+            if (n > from)
+                memcpy(m->edge + base + from, p->v.edge + from, n - from);
             g->cur_edge = p->cur_edge;
         } else {
             size_t k = (size_t)qgl__attribs[a].floats;
-            memcpy(m->attr[a] + k * (base + from), p->v.attr[a] + k * from, k * (n - from) * sizeof(float));
+            if (n > from)
+                memcpy(m->attr[a] + k * (base + from), p->v.attr[a] + k * from, k * (n - from) * sizeof(float));
             memcpy(g->cur[a], p->cur[a], sizeof g->cur[a]);
         }
         g->set |= bit;
@@ -361,12 +410,23 @@ void pl_list_add_prim(pl_ctx *x, const pl_prim *p)
             if (it)
                 l->n--;
             pl_log(PL_LOG_WARN, "out of memory: quads lost from display list %u", l->name);
+        } else {
+            it->prim.in_list = 1;
         }
         return;
     }
     pl_geom *g = pl_list_geometry(x);
     if (!g || !pl_geom_add(g, p))
         pl_log(PL_LOG_WARN, "out of memory: primitives lost from display list %u", l->name);
+}
+
+/* A list command inside a captured primitive: GL_INVALID_OPERATION now, never compiled (list
+ * commands run at once, even while a list is compiled). */
+static void pl_list_error_now(pl_ctx *x)
+{
+    if (x->compiling)
+        pl_list_close(x);
+    REAL(glEnd)(); /* the driver saw no glBegin: the error, nothing else */
 }
 
 PL_EXPORT void glNewList(GLuint list, GLenum mode)
@@ -376,11 +436,13 @@ PL_EXPORT void glNewList(GLuint list, GLenum mode)
     if (!x && pl_cfg.capture)
         x = pl_current();
     if (x && x->capturing) {
-        pl_invalid_operation();
+        pl_list_error_now(x);
         return;
     }
     if (x)
         pl_batch_flush(x);
+    if (x && x->compiling)
+        pl_list_state(x); /* the driver's list is open: its own error */
     if (!x || !pl_cfg.capture || x->compiling || x->native_begin || list == 0 ||
         (mode != GL_COMPILE && mode != GL_COMPILE_AND_EXECUTE) || !(l = calloc(1, sizeof *l))) {
         REAL(glNewList)(list, mode);
@@ -402,25 +464,40 @@ PL_EXPORT void glEndList(void)
 {
     pl_ctx *x = pl_tls_ctx;
     pl_list *l;
-    if (x && x->capturing) {
-        pl_invalid_operation();
+    if (x && x->capturing && (!x->compiling || x->compile_mode != GL_COMPILE)) {
+        pl_list_error_now(x);
         return;
     }
     if (!x || !x->compiling) {
         REAL(glEndList)();
         return;
     }
+    if (x->capturing) /* GL_COMPILE: the list ends inside its primitive */
+        pl_cap_to_driver(x);
     l = x->compiling;
+    pl_list_end_prim(x);
     pl_list_close(x);
     x->compiling = NULL;
     pl_update_slow(x);
-    if (l->n == 1 && l->items[0].kind == PL_ITEM_SEGMENT && !l->items[0].mask) {
+    if (l->n == 1 && l->items[0].kind == PL_ITEM_SEGMENT && !l->items[0].mask && !l->items[0].begins) {
         /* Nothing recorded and nothing tracked changed: the driver's list is the whole list. */
         pl_share_set(x->share, l->name, NULL);
         pl_list_unref(l);
         return;
     }
     pl_share_set(x->share, l->name, l);
+}
+
+PL_EXPORT void glListBase(GLuint base)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_UNLIKELY(pl_touch(PL_D_LIST_BASE)))
+        return;
+    REAL(glListBase)(base);
+    if (x && !x->native_begin && (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE)) {
+        x->list_base = (GLint)base;
+        x->list_base_known = 1;
+    }
 }
 
 PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
@@ -447,19 +524,22 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 
 /* ---- executing ------------------------------------------------------------------------------ */
 
-/* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS as the
- * triangles its display lists split them into (0-1-3, 1-2-3), not its immediate mode's. */
+/* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS, when
+ * the polygons are filled, as the triangles its display lists split them into (0-1-3, 1-2-3),
+ * not its immediate mode's. */
 static void pl_geom_replay(const qgl__mesh *m)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
     struct qgl__gl *gl = pl_gl();
     const qgl__verts *v = &m->v;
+    int filled = pl_polygons_filled();
     for (size_t k = 0; k < m->nprim; k++) {
         const qgl__mesh_prim *p = &m->prim[k];
-        size_t c = p->chg0, end = p->chg0 + p->nchg, n = p->mode == GL_QUADS ? 6 * (p->count / 4) : p->count;
-        gl->Begin(p->mode == GL_QUADS ? GL_TRIANGLES : p->mode);
+        int tris = p->mode == GL_QUADS && filled;
+        size_t c = p->chg0, end = p->chg0 + p->nchg, n = tris ? 6 * (p->count / 4) : p->count;
+        gl->Begin(tris ? GL_TRIANGLES : p->mode);
         for (size_t j = 0; j < n; j++) {
-            size_t i = p->first + (p->mode == GL_QUADS ? 4 * (j / 6) + (size_t)split[j % 6] : j);
+            size_t i = p->first + (tris ? 4 * (j / 6) + (size_t)split[j % 6] : j);
             for (; c < end && m->chg[c].vertex <= i; c++)
                 gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
             for (int a = 0; a < QGL__NATTR; a++)
@@ -509,8 +589,13 @@ static void pl_geom_lead(pl_ctx *x, pl_geom *g)
 static void pl_geom_exec(pl_ctx *x, pl_geom *g)
 {
     struct qgl__gl *gl;
-    qgl_context *qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
+    qgl_context *qgl;
+    if (g->m.nprim && x->native_begin) {
+        pl_invalid_operation();
+        return;
+    }
     if (g->m.nprim) {
+        qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
         pl_geom_lead(x, g);
         if (!qgl || qgl__mesh_draw(qgl, &g->m, x->share) < 0)
             pl_geom_replay(&g->m);
@@ -529,12 +614,51 @@ static void pl_geom_exec(pl_ctx *x, pl_geom *g)
 
 static void pl_list_exec(pl_ctx *x, GLuint name, int depth);
 
+/* The list base: glListBase's value, or asked of the driver (never inside its glBegin). */
+static GLint pl_list_base(pl_ctx *x)
+{
+    if (!x->list_base_known && !x->native_begin) {
+        x->list_base = 0;
+        REAL(glGetIntegerv)(GL_LIST_BASE, &x->list_base);
+        x->list_base_known = 1;
+    }
+    return x->list_base;
+}
+
 static void pl_exec_calls(pl_ctx *x, const uint32_t *names, size_t count, int depth)
 {
-    GLint base = 0;
-    REAL(glGetIntegerv)(GL_LIST_BASE, &base);
+    GLint base = pl_list_base(x);
     for (size_t k = 0; k < count; k++)
         pl_list_exec(x, (GLuint)base + names[k], depth);
+}
+
+/* Items [from, to) of l, in order. */
+static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int depth)
+{
+    for (size_t i = from; i < to; i++) {
+        pl_item *it = &l->items[i];
+        switch (it->kind) {
+        case PL_ITEM_SEGMENT:
+            REAL(glCallList)(it->name);
+            x->dirty |= it->mask & PL_D_STATE;
+            if (it->mask & PL_D_CURRENT)
+                x->cur_known = 0;
+            if (it->mask & PL_D_LIST_BASE)
+                x->list_base_known = 0;
+            if (it->begins)
+                x->native_begin = it->begins == 1;
+            break;
+        case PL_ITEM_GEOMETRY: pl_geom_exec(x, it->geom); break;
+        case PL_ITEM_PRIM:
+            if (x->native_begin)
+                pl_invalid_operation();
+            else
+                pl_draw_prim(x, &it->prim);
+            break;
+        case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
+        default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
+        }
+    }
 }
 
 static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
@@ -547,21 +671,7 @@ static void pl_list_exec(pl_ctx *x, GLuint name, int depth)
         REAL(glCallList)(name);
         return;
     }
-    for (size_t i = 0; i < l->n; i++) {
-        pl_item *it = &l->items[i];
-        switch (it->kind) {
-        case PL_ITEM_SEGMENT:
-            REAL(glCallList)(it->name);
-            x->dirty |= it->mask & PL_D_STATE;
-            if (it->mask & PL_D_CURRENT)
-                x->cur_known = 0;
-            break;
-        case PL_ITEM_GEOMETRY: pl_geom_exec(x, it->geom); break;
-        case PL_ITEM_PRIM: pl_draw_prim(x, &it->prim); break;
-        case PL_ITEM_CALL: pl_list_exec(x, it->name, depth + 1); break;
-        default: pl_exec_calls(x, it->names, it->count, depth + 1); break;
-        }
-    }
+    pl_items_exec(x, l, 0, l->n, depth);
     pl_list_unref(l);
 }
 
@@ -615,10 +725,12 @@ PL_EXPORT void glCallList(GLuint list)
     pl_ctx *x = pl_tls_ctx;
     if (x && !x->capturing)
         pl_batch_flush(x);
-    if (!x || x->capturing || x->native_begin || !pl_cfg.capture) {
+    if (!x || !pl_cfg.capture) {
         REAL(glCallList)(list);
         return;
     }
+    if (x->capturing)
+        pl_cap_to_driver(x);
     if (x->compiling) {
         pl_compile_call(x, PL_ITEM_CALL, list, NULL, 0);
         return;
@@ -633,8 +745,7 @@ PL_EXPORT void glCallList(GLuint list)
 /* Whether any of the names (plus the current base) is one of ours. */
 static int pl_any_ours(pl_ctx *x, const uint32_t *names, GLsizei n)
 {
-    GLint base = 0;
-    REAL(glGetIntegerv)(GL_LIST_BASE, &base);
+    GLint base = pl_list_base(x);
     for (GLsizei i = 0; i < n; i++) {
         pl_list *l = pl_share_get(x->share, (GLuint)base + names[i]);
         if (l) {
@@ -651,8 +762,10 @@ PL_EXPORT void glCallLists(GLsizei n, GLenum type, const void *lists)
     uint32_t *names;
     if (x && !x->capturing)
         pl_batch_flush(x);
-    if (!x || x->capturing || x->native_begin || !pl_cfg.capture || n <= 0 || !lists ||
-        (!x->compiling && pl_share_empty(x->share)) || !(names = malloc((size_t)n * sizeof *names))) {
+    if (x && x->capturing && pl_cfg.capture && n > 0 && lists)
+        pl_cap_to_driver(x);
+    if (!x || !pl_cfg.capture || n <= 0 || !lists || (!x->compiling && pl_share_empty(x->share)) ||
+        !(names = malloc((size_t)n * sizeof *names))) {
         REAL(glCallLists)(n, type, lists);
         return;
     }

@@ -131,6 +131,7 @@ typedef struct pl_prim {
     size_t nmat, capmat;
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
+    int in_list;             /* a display list's own: replayed as the driver's lists draw */
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);
@@ -154,6 +155,7 @@ enum {
     PL_D_BIND = QGL__D_BIND,
     PL_D_ORDER = QGL__D_ORDER,
     PL_D_CURRENT = 1 << 8,
+    PL_D_LIST_BASE = 1 << 9,
     PL_D_STATE = QGL__D_ALL
 };
 
@@ -181,6 +183,9 @@ struct pl_ctx {
     GLenum compile_mode;
     unsigned seg_dirty;      /* while compiling: what the open segment's calls change */
     int list_depth;
+    GLint list_base;         /* glListBase's value, kept because glCallLists inside the driver's
+                                glBegin (after a hand-over) may not ask the driver */
+    int list_base_known;
     int bound;               /* threads it is current on (0 or 1) */
     int dead;                /* destroyed while current elsewhere: freed at release */
     uint64_t published[PL_ST_COUNT]; /* its GL path's counters already in the totals */
@@ -211,7 +216,10 @@ static inline void pl_update_slow(pl_ctx *x)
 /* The driver's entry points as the GL path's table (resolved once, for replays). */
 struct qgl__gl *pl_gl(void);
 
-/* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives. */
+/* GL_INVALID_OPERATION from the driver, as a call GL forbids inside glBegin/glEnd gives (or,
+ * inside the driver's own glBegin, as a primitive begun there gives). Inside a primitive of a
+ * list being compiled the error is compiled (and raised when the list runs), as the call
+ * itself would be. */
 void pl_invalid_operation(void);
 void pl_touch_slow(pl_ctx *x, unsigned mask);
 
@@ -233,17 +241,36 @@ static inline int pl_touch(unsigned mask)
     x->dirty |= mask & PL_D_STATE;
     if (mask & PL_D_CURRENT)
         x->cur_known = 0;
+    if (mask & PL_D_LIST_BASE)
+        x->list_base_known = 0;
     return 0;
 }
 
-/* A pure query: only its place inside a captured glBegin/glEnd matters. */
+/* A pure query: only its place inside a captured glBegin/glEnd matters (under GL_COMPILE
+ * that glBegin is only compiled, and the query is legal). */
 static inline int pl_inside_capture(void)
 {
     pl_ctx *x = pl_tls_ctx;
-    if (PL_LIKELY(x == NULL || !x->capturing))
+    if (PL_LIKELY(x == NULL || !x->capturing) || (x->compiling && x->compile_mode == GL_COMPILE))
         return 0;
     pl_invalid_operation();
     return 1;
+}
+
+void pl_uncaptured_slow(pl_ctx *x);
+
+/* A call GL allows inside glBegin/glEnd that the capture does not represent (colour indices,
+ * integer, double, packed and half-float attributes): it may change the current attributes;
+ * inside a captured primitive the driver takes the primitive over first (pl_cap_to_driver),
+ * and while compiling it goes into a segment. */
+static inline void pl_touch_uncaptured(void)
+{
+    pl_ctx *x = pl_tls_ctx;
+    if (PL_LIKELY(x == NULL))
+        return;
+    x->cur_known = 0;
+    if (PL_UNLIKELY(x->slow))
+        pl_uncaptured_slow(x);
 }
 
 /* The current value of attribute a (QGL__AT_*; 4 floats), asked of the driver if unknown. */
@@ -265,6 +292,14 @@ void pl_list_state(pl_ctx *x);
 void pl_list_add_prim(pl_ctx *x, const pl_prim *p);
 /* While compiling: an attribute call between primitives (slot QGL__NATTR: the edge flag). */
 void pl_list_attrib(pl_ctx *x, int slot, const float v[4]);
+/* While compiling: the driver compiles a glBegin (inside 1) or a glEnd (0) that its list leaves
+ * open or closes, so that running the list tells whether the driver is inside a primitive. */
+void pl_list_begin_end(pl_ctx *x, int inside);
+/* While compiling under GL_COMPILE_AND_EXECUTE: the driver takes over a primitive (see
+ * pl_cap_to_driver); its calls are compiled only until its glEnd (or glEndList), then run
+ * (pl_list_end_prim, a no-op otherwise). */
+void pl_list_defer(pl_ctx *x);
+void pl_list_end_prim(pl_ctx *x);
 
 /* ---- batches of finished primitives (draw.c) --------------------------------------------- */
 
@@ -283,6 +318,8 @@ void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
 void pl_cap_edgeflag(pl_ctx *x, GLboolean flag);
 void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
 void pl_cap_array_element(pl_ctx *x, GLint i);
+/* The driver takes over the primitive being captured (into the list's segment while compiling). */
+void pl_cap_to_driver(pl_ctx *x);
 
 /* The hooks of the generated attribute and vertex wrappers: 1 when the call was captured (it
  * must not reach the driver), 0 when it goes on to the driver. */
@@ -333,7 +370,8 @@ static inline int pl_hook_vertex(pl_ctx *x, float a, float b, float c, float d)
 
 int pl_hook_edgeflag(pl_ctx *x, GLboolean flag);
 int pl_hook_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q);
-int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv);
+/* fv or iv holds `given` values (1 for glMaterialf/i, which the driver pads with zeros). */
+int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv, int given);
 int pl_hook_array_element(pl_ctx *x, GLint i);
 
 /* Fills p with the vertices of an array draw (type 0: first .. first + count - 1, else count
@@ -356,6 +394,12 @@ void pl_end_prim(pl_ctx *x, pl_prim *p);
 void pl_prim_apply_current(pl_ctx *x, const pl_prim *p);
 /* The calls that draw p in the driver (glBegin, attributes, vertices, glEnd, materials). */
 void pl_prim_emit(pl_ctx *x, const pl_prim *p);
+/* The driver's glBegin and p's vertices so far, then the values its next vertex takes: the rest
+ * of the primitive goes to the driver as the program's own calls. */
+void pl_prim_to_driver(pl_ctx *x, const pl_prim *p);
+/* Whether the driver fills both faces' polygons (its display lists then draw GL_QUADS as the
+ * triangles 0-1-3, 1-2-3; otherwise as quads, keeping their outlines and edge flags). */
+int pl_polygons_filled(void);
 /* Whether p goes to the driver as it is rather than through the GL path. */
 int pl_prim_for_driver(pl_ctx *x, const pl_prim *p);
 

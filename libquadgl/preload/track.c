@@ -16,7 +16,23 @@
 
 void pl_invalid_operation(void)
 {
-    REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
+    pl_ctx *x = pl_tls_ctx;
+    if (x && x->capturing && x->compiling)
+        pl_list_state(x);
+    if (x && x->native_begin)
+        REAL(glBegin)(GL_POINTS); /* a glBegin inside the driver's: the error, nothing else */
+    else
+        REAL(glEnd)(); /* the driver saw no glBegin: GL_INVALID_OPERATION, nothing else */
+}
+
+void pl_uncaptured_slow(pl_ctx *x)
+{
+    if (x->capturing)
+        pl_cap_to_driver(x);
+    if (x->compiling) {
+        pl_list_state(x);
+        x->seg_dirty |= PL_D_CURRENT;
+    }
 }
 
 /* A pending batch is drawn before the call can change what it looks like; while compiling,

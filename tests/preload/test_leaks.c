@@ -2,7 +2,7 @@
  *
  * Immediate quads and strips (in several chunks), array draws from client memory and buffer
  * objects, display lists nested, redefined and deleted, an evaluator mesh, then the context
- * destroyed. Run under valgrind --leak-check=full with libquadgl-preload.so preloaded; the
+ * destroyed; before that, a second context that drew quads destroyed while not current. Run under valgrind --leak-check=full with libquadgl-preload.so preloaded; the
  * suppression file leaves out what the driver itself keeps. No child processes (valgrind
  * would not follow them), no pixels checked: test_scenes does that. */
 #define GL_GLEXT_PROTOTYPES 1
@@ -37,9 +37,14 @@ int main(void)
 {
     unsigned char *buf = malloc(32 * 32 * 4);
     OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
+    OSMesaContext other = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
     GLuint base, vbo;
-    if (!buf || !ctx || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, 32, 32))
+    if (!buf || !ctx || !other || !OSMesaMakeCurrent(other, buf, GL_UNSIGNED_BYTE, 32, 32))
         return 77;
+    immediate(GL_QUADS, 8);
+    if (!OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, 32, 32))
+        return 77;
+    OSMesaDestroyContext(other);
     immediate(GL_QUADS, 70000 * 4); /* more than one chunk */
     immediate(GL_QUAD_STRIP, 10);
     glEnableClientState(GL_VERTEX_ARRAY);

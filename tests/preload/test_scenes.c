@@ -384,6 +384,11 @@ static void scene_batches(pt_run *r)
             glColor4fv(c[k % 4]);
             for (int i = 0; i < 4; i++)
                 memcpy(c[i], c[k % 4], sizeof c[i]);
+            if (way == 1) { /* what waits is drawn now: the colour just set must survive that */
+                glPushMatrix();
+                glPopMatrix();
+                glPushMatrix();
+            }
         } else if (way == 2) { /* the first two vertices take the current colour */
             glColor4fv(c[0]);
             memcpy(c[1], c[0], sizeof c[1]);
@@ -424,7 +429,7 @@ static void scene_batches(pt_run *r)
             }
             glEnd();
         }
-        if (way == 3)
+        if (way == 3 || way == 1) /* way 1: drawn now, with the colour set before the last flush */
             glPopMatrix();
         if (way == 4)
             glShadeModel(GL_SMOOTH);

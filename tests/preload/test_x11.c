@@ -15,7 +15,8 @@
  * quads are planar and flat shaded, so smoothing must not change them; at most 0.5% of the
  * pixels may differ by more than 2/255 (depth ties along shared edges), and the replay of
  * the captured calls must give the native picture exactly. Exit 77 when Xvfb cannot start
- * or the program is not installed. */
+ * or the program is not installed. In a sanitizer build PT_PRELOAD_FIRST names the
+ * sanitizer's runtime, which every LD_PRELOAD set here begins with. */
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -85,7 +86,8 @@ static int start_xvfb(void)
 static int run(char *const argv[], char *const extra[], const char *errfile)
 {
     size_t n = 0, k = 0, m = 0;
-    char **env;
+    char **env, preload[1400];
+    const char *first = getenv("PT_PRELOAD_FIRST");
     pid_t pid;
     int status = 0, rc;
     posix_spawn_file_actions_t fa;
@@ -103,8 +105,13 @@ static int run(char *const argv[], char *const extra[], const char *errfile)
         if (!overridden && strncmp(environ[i], "LD_PRELOAD=", 11) != 0 && strncmp(environ[i], "QUADGL_", 7) != 0)
             env[k++] = environ[i];
     }
-    for (size_t j = 0; j < m; j++)
+    for (size_t j = 0; j < m; j++) {
         env[k++] = extra[j];
+        if (first && *first && strncmp(extra[j], "LD_PRELOAD=", 11) == 0) {
+            snprintf(preload, sizeof preload, "LD_PRELOAD=%s:%s", first, extra[j] + 11);
+            env[k - 1] = preload;
+        }
+    }
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 2, errfile, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, env);
