@@ -21,6 +21,10 @@
  *                       (the REALTIME and MONOTONIC clocks and their variants); getpid returns
  *                       a constant. The xscreensaver hacks seed their random numbers from
  *                       the time and the pid, so a frozen run draws the same frames every time.
+ *   APPSHIM_FREEZE=realtime   the same for the time of day only (gettimeofday, time,
+ *                       CLOCK_REALTIME) and getpid: the hacks draw the same frames, while the
+ *                       driver and quadgl, which time themselves on CLOCK_MONOTONIC, see real
+ *                       time (a timed run compares the same work natively and preloaded).
  *
  * The shim measures its own time with the real clock (the next clock_gettime), whatever is
  * frozen. The mask works by drawing each such draw a second time, state pushed, into a
@@ -47,6 +51,8 @@ static int frames; /* swaps so far (atomic: other threads read the frozen clocks
 
 /* ---- configuration -------------------------------------------------------------------------- */
 
+enum { FREEZE_NONE, FREEZE_ALL, FREEZE_REALTIME };
+
 static struct {
     int read;
     double seconds;
@@ -65,7 +71,11 @@ static void read_cfg(void)
     cfg.shot = getenv("APPSHIM_SHOT");
     cfg.mask = getenv("APPSHIM_MASK");
     cfg.shot_frame = (s = getenv("APPSHIM_FRAME")) ? atoi(s) : 20;
-    cfg.freeze = (s = getenv("APPSHIM_FREEZE")) && atoi(s) != 0;
+    cfg.freeze = FREEZE_NONE;
+    if ((s = getenv("APPSHIM_FREEZE")) && strcmp(s, "realtime") == 0)
+        cfg.freeze = FREEZE_REALTIME;
+    else if (s && atoi(s) != 0)
+        cfg.freeze = FREEZE_ALL;
     cfg.step_us = (s = getenv("APPSHIM_STEP_US")) ? atoll(s) : 40000;
     __atomic_store_n(&cfg.read, 1, __ATOMIC_RELEASE);
 }
@@ -99,10 +109,11 @@ static long long frozen_us(void)
     return (long long)__atomic_load_n(&frames, __ATOMIC_RELAXED) * cfg.step_us;
 }
 
-static int frozen(void)
+/* Whether the time of day (realtime) or all clocks (!realtime) are frozen. */
+static int frozen(int realtime)
 {
     read_cfg();
-    return cfg.freeze;
+    return cfg.freeze == FREEZE_ALL || (realtime && cfg.freeze == FREEZE_REALTIME);
 }
 
 /* glibc declares the time functions' arguments nonnull; callers may still pass NULL. */
@@ -125,10 +136,12 @@ static void frozen_timeval(struct timeval *tv)
 SHIM_EXPORT int clock_gettime(clockid_t clk, struct timespec *ts)
 {
     long long base;
+    int realtime = 0;
     switch (clk) {
     case CLOCK_REALTIME:
     case CLOCK_REALTIME_COARSE:
         base = FROZEN_REALTIME;
+        realtime = 1;
         break;
     case CLOCK_MONOTONIC:
     case CLOCK_MONOTONIC_RAW:
@@ -139,7 +152,7 @@ SHIM_EXPORT int clock_gettime(clockid_t clk, struct timespec *ts)
     default:
         base = -1;
     }
-    if (base < 0 || !frozen())
+    if (base < 0 || !frozen(realtime))
         return real_clock_gettime()(clk, ts);
     frozen_timespec(ts, base);
     return 0;
@@ -148,7 +161,7 @@ SHIM_EXPORT int clock_gettime(clockid_t clk, struct timespec *ts)
 SHIM_EXPORT int gettimeofday(struct timeval *tv, void *tz)
 {
     static gettimeofday_fn real;
-    if (!frozen()) {
+    if (!frozen(1)) {
         if (!real)
             real = (gettimeofday_fn)dlsym(RTLD_NEXT, "gettimeofday");
         return real(tv, tz);
@@ -161,7 +174,7 @@ SHIM_EXPORT time_t time(time_t *t)
 {
     static time_fn real;
     time_t now;
-    if (!frozen()) {
+    if (!frozen(1)) {
         if (!real)
             real = (time_fn)dlsym(RTLD_NEXT, "time");
         return real(t);
@@ -175,7 +188,7 @@ SHIM_EXPORT time_t time(time_t *t)
 SHIM_EXPORT pid_t getpid(void)
 {
     static getpid_fn real;
-    if (frozen())
+    if (frozen(1))
         return 4242;
     if (!real)
         real = (getpid_fn)dlsym(RTLD_NEXT, "getpid");
