@@ -3,7 +3,7 @@
 #
 #   tools/apps-bench.sh [--build DIR] [--out DIR] [--seconds S] [--reps N] [--size WxH]
 #                       [--methods "off replay split auto"] [--mvc] [--set NAME|all] [--all]
-#                       [--quick] [--memory] [PROGRAM...]
+#                       [--quick] [--memory] [--no-freeze] [PROGRAM...]
 #
 # Every program of tools/apps.list's `bench` set (--all: the whole list; or the programs
 # named) runs under a private Xvfb at 640x480, natively and preloaded with each method, for S
@@ -26,7 +26,8 @@
 # program >= 0.97x, the median >= 0.98x, none below 0.9x, "smooth" programs >= 0.9x.
 #
 # --memory: the resident size instead (VmRSS at the end of a 30-second run, native and
-# auto, one run each unless told): target within 10% of native.
+# auto, one run each unless told, time not frozen: sonar aborts after some 150 frames of a
+# frozen clock, natively too): target within 10% of native. --no-freeze: real time always.
 #
 # Writes OUT/apps-bench.md (table), OUT/apps-bench.csv (one row per run), OUT/apps-bench.png
 # (the ratio per program and method; needs gnuplot), or OUT/apps-memory.md and .csv.
@@ -34,7 +35,7 @@ set -eu
 . "$(dirname "$0")/apps-lib.sh"
 
 build="$apps_root/build" out="$apps_root/out" secs=4 reps=3 apps_size=640x480
-methods="off replay split auto" set=bench memory=0 methods_given=0 reps_given=0
+methods="off replay split auto" set=bench memory=0 methods_given=0 reps_given=0 freeze=realtime
 while [ $# -gt 0 ]; do
     case $1 in
     --build) build=$2; shift 2 ;;
@@ -47,7 +48,8 @@ while [ $# -gt 0 ]; do
     --set) set=$2; shift 2 ;;
     --all) set=all; shift ;;
     --quick) secs=2 reps=1 reps_given=1; shift ;;
-    --memory) memory=1 secs=30; shift ;;
+    --memory) memory=1 secs=30 freeze=0; shift ;;
+    --no-freeze) freeze=0; shift ;;
     -h|--help) sed -n '2,/^set -eu/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) echo "apps-bench: unknown option $1" >&2; exit 2 ;;
     *) break ;;
@@ -63,7 +65,7 @@ fi
 apps_init "$build"
 apps_xvfb "$apps_size" || { echo "apps-bench: Xvfb cannot start" >&2; exit 1; }
 mkdir -p "$out"
-export APPSHIM_FREEZE=realtime
+export APPSHIM_FREEZE=$freeze
 cells="native $methods"
 ncells=$(echo "$cells" | wc -w)
 csv="$out/$base.csv"
