@@ -1,6 +1,6 @@
 #!/bin/sh
 # test.sh: the README's test command. Installs what is missing, builds, runs every meson test
-# suite (core, render, gl, preload, demos) and ends with "N passed, N failed, N skipped".
+# suite (core, render, gl, apps, preload, demo) and ends with "N passed, N failed, N skipped".
 set -eu
 cd "$(dirname "$0")/.."
 tools/deps.sh

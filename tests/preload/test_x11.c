@@ -2,7 +2,7 @@
  *
  *   test_x11 glut|getproc PRELOAD PROGRAM
  *   test_x11 pyopengl PRELOAD SCRIPT
- *   test_x11 gears PRELOAD FRAMESHIM
+ *   test_x11 gears PRELOAD APPSHIM
  *
  * Each case starts its own Xvfb (-displayfd: the server picks a free display, so parallel
  * tests do not collide), runs the program with the library preloaded and QUADGL_STATS=1,
@@ -11,7 +11,7 @@
  * (freeglut, a program that finds every function through glXGetProcAddressARB, PyOpenGL
  * which dlopens libGL) the picture is compared with the mean value reference of ref_quad.h.
  * glxgears (quad strips and quads in display lists, flat shading, lighting) is frozen in
- * time and photographed by frameshim.c, natively and preloaded (replay, auto, mvc): its
+ * time and photographed at frame 5 by tests/apps/appshim.c, natively and preloaded (replay, auto, mvc): its
  * quads are planar and flat shaded, so smoothing must not change them; at most 0.5% of the
  * pixels may differ by more than 2/255 (depth ties along shared edges), and the replay of
  * the captured calls must give the native picture exactly. Exit 77 when Xvfb cannot start
@@ -215,10 +215,11 @@ static unsigned char *gears_shot(const char *preload, const char *method, int *w
     int rc;
     temp_names(shot, err, method ? method : "native");
     snprintf(pre, sizeof pre, "LD_PRELOAD=%s", preload);
-    snprintf(shotenv, sizeof shotenv, "PT_SHOT=%s", shot);
+    snprintf(shotenv, sizeof shotenv, "APPSHIM_SHOT=%s", shot);
     snprintf(meth, sizeof meth, "QUADGL_METHOD=%s", method ? method : "off");
     {
-        char *extra[] = {pre, shotenv, meth, "QUADGL_STATS=1", "vblank_mode=0", NULL};
+        char *extra[] = {pre, shotenv, "APPSHIM_FRAME=5", "APPSHIM_FREEZE=1", meth, "QUADGL_STATS=1",
+                         "vblank_mode=0", NULL};
         rc = run(argv, extra, err);
     }
     *quads = stats_quads(err, method ? method : "native");
