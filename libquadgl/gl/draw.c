@@ -133,7 +133,8 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
                            const double *clip[4]);
 
 /* Whether the split draws the quad as the smooth path would: exactly, or (invisible set) by
- * split_invisible's bound, which is tried first, being cheaper where it passes. */
+ * split_invisible's bound, which is tried before the affinity test, being cheaper where it
+ * passes. */
 static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                           const double *clip[4], int invisible, int *planar)
 {
@@ -148,9 +149,13 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     *planar = qgl__planar(p);
     if (!*planar || st->nonaffine)
         return 0;
+    int n = gather_attribs(st, v, idx, attr);
+    if (memcmp(attr, attr + QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
+        memcmp(attr, attr + 2 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
+        memcmp(attr, attr + 3 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0)
+        return 1; /* nothing varies over the quad (a flat-coloured face): the commonest case */
     if (invisible && split_invisible(ctx, st, v, idx, clip))
         return 1;
-    int n = gather_attribs(st, v, idx, attr);
     for (int c = 0; c < 4; c++)
         for (int k = 0; k < n; k++)
             packed[c * n + k] = attr[c * QGL__ATTR_MAX + k];

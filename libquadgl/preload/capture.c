@@ -37,6 +37,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->lost = 0;
     p->from_arrays = 0;
     p->in_list = 0;
+    p->mat_inert = -1;
     memset(p->first, 0, sizeof p->first);
     p->cur_edge = GL_TRUE;
 }
@@ -273,6 +274,20 @@ static void pl_push_material(pl_ctx *x, GLenum face, GLenum pname, const float *
     memcpy(m->v, v, (size_t)n * sizeof *v);
 }
 
+/* Whether a material call changes no pixel of the quads drawn until lighting or colour material
+ * is enabled, which draws the batch first: neither is on. The prim's own answer is kept, as
+ * neither can change inside glBegin/glEnd. The driver must not be inside a glBegin of its own. */
+static int pl_material_inert(pl_ctx *x)
+{
+    pl_prim *p = &x->prim;
+    if (x->capturing && p->mat_inert >= 0)
+        return p->mat_inert;
+    int inert = !REAL(glIsEnabled)(GL_LIGHTING) && !REAL(glIsEnabled)(GL_COLOR_MATERIAL);
+    if (x->capturing)
+        p->mat_inert = (signed char)inert;
+    return inert;
+}
+
 /* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. The
  * scalar forms give one value, which the driver takes unconverted for any parameter (what it
  * reads past it is undefined; here zeros). */
@@ -281,11 +296,14 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
     if (!x->capturing) {
-        pl_batch_flush(x);
         if (x->compiling)
             pl_list_state(x);
+        if (x->batch.v.n && (x->compiling || x->native_begin || !pl_material_inert(x)))
+            pl_batch_flush(x);
         return 0;
     }
+    if (!x->compiling && pl_material_inert(x))
+        return 0; /* it shows in no vertex: the driver takes it now, in its order among materials */
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
     for (int i = 0; i < n && i < given; i++)

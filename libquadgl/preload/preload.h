@@ -132,6 +132,7 @@ typedef struct pl_prim {
     int lost;                /* something the capture cannot represent (texture unit >= 4) */
     int from_arrays;         /* current attributes are restored after a replay */
     int in_list;             /* a display list's own: replayed as the driver's lists draw */
+    signed char mat_inert;   /* pl_material_inert's answer for this primitive, -1 unknown */
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);

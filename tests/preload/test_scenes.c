@@ -762,6 +762,96 @@ static void scene_materials(pt_run *r)
     r->min_quads = 3;
 }
 
+/* The material state as values to compare with the driver's (bit patterns of the floats). */
+static void material_values(pt_run *r)
+{
+    static const GLenum pnames[] = {GL_AMBIENT, GL_DIFFUSE, GL_SPECULAR, GL_EMISSION};
+    for (int f = 0; f < 2; f++)
+        for (int k = 0; k < 4; k++) {
+            float m[4];
+            glGetMaterialfv(f ? GL_BACK : GL_FRONT, pnames[k], m);
+            for (int i = 0; i < 4; i++) {
+                uint32_t bits;
+                memcpy(&bits, &m[i], sizeof bits);
+                pt_value(r, bits);
+            }
+        }
+}
+
+/* Unlit primitives that set a material per quad (as programs that share code between lit and
+ * unlit passes do): batched like any other, the materials still reach the driver in their order
+ * (also against glColor under colour material), and a lit quad drawn afterwards has the last. */
+static void scene_unlit_materials(pt_run *r)
+{
+    static const float dir[4] = {0, 0, 1, 0};
+    uint64_t before[PT_NCOUNTERS];
+    float v[4][2], c[4][4], m[4] = {0, 0, 0, 1}, lit[4][4];
+    pt_begin_frame();
+    glEnable(GL_COLOR_MATERIAL); /* lighting off: glColor still sets the tracked material */
+    glColorMaterial(GL_FRONT, GL_DIFFUSE);
+    cell_quad(0, v);
+    cell_colours(0, c);
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(c[i]);
+        if (i == 1) {
+            const float spec[4] = {0.1f, 0.2f, 0.3f, 1};
+            glMaterialfv(GL_FRONT, GL_DIFFUSE, spec); /* the next glColor overrides it */
+            glMaterialfv(GL_BACK, GL_SPECULAR, spec);
+        }
+        glVertex2fv(v[i]);
+    }
+    glEnd();
+    pt_expect(r, v, c, 0);
+    glDisable(GL_COLOR_MATERIAL);
+    material_values(r);
+    pt_counters(before);
+    for (int k = 1; k < 20; k++) {
+        cell_quad(k, v);
+        cell_colours(k, c);
+        for (int i = 0; k % 2 == 0 && i < 4; i++) /* even cells in one colour */
+            memcpy(c[i], c[0], sizeof c[i]);
+        for (int i = 0; i < 3; i++)
+            m[i] = 0.75f * c[0][i];
+        glBegin(GL_QUADS);
+        glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, m);
+        for (int i = 0; i < 4; i++) {
+            glColor4fv(c[i]);
+            if (i == 2 && k % 3 == 0)
+                glMaterialf(GL_FRONT, GL_SHININESS, (float)k);
+            glVertex2fv(v[i]);
+        }
+        glEnd();
+        pt_expect(r, v, c, 0);
+        if (k % 5 == 0)
+            glMaterialfv(GL_BACK, GL_EMISSION, m); /* outside, between primitives */
+    }
+    uint64_t d = draws_since(before);
+    if (d > 2)
+        snprintf(r->failure, sizeof r->failure, "19 unlit primitives with materials took %llu draws",
+                 (unsigned long long)d);
+    material_values(r);
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glNormal3f(0, 0, 1);
+    cell_quad(22, v);
+    for (int i = 0; i < 4; i++) {
+        for (int k = 0; k < 3; k++)
+            lit[i][k] = 1.2f * m[k];
+        lit[i][3] = 1;
+    }
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++)
+        glVertex2fv(v[i]);
+    glEnd();
+    pt_expect(r, v, lit, 0);
+    glDisable(GL_LIGHT0);
+    glDisable(GL_LIGHTING);
+    r->checks_reference = 1;
+    r->min_quads = 21;
+}
+
 static void scene_polygon_line(pt_run *r)
 {
     pt_begin_frame();
@@ -981,6 +1071,7 @@ static const pt_scene scenes[] = {
     {"batch_states", scene_batch_states},
     {"batch_draws", scene_batch_draws},
     {"materials", scene_materials},
+    {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
     {"list_depth", scene_list_depth},
 };
