@@ -337,7 +337,8 @@ static int draw_one(qgl_context *ctx, qgl__mesh *m, size_t i, int way)
     for (size_t c = 0; c < p->nchg; c++)
         m->chg[p->chg0 + c].vertex -= p->first;
     if (way == 1 || is_quads(p->mode))
-        k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE, m->chg + p->chg0, p->nchg);
+        k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE | QGL__DRAW_LIST, m->chg + p->chg0,
+                            p->nchg);
     else
         qgl__replay_prim(ctx, p->mode, &w, m->chg + p->chg0, p->nchg);
     for (size_t c = 0; c < p->nchg; c++)

@@ -526,7 +526,7 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 
 /* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS, when
  * the polygons are filled, as the triangles its display lists split them into (0-1-3, 1-2-3),
- * not its immediate mode's. */
+ * not its immediate mode's, each vertex with its own materials (qgl__matrun). */
 static void pl_geom_replay(const qgl__mesh *m)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
@@ -536,12 +536,18 @@ static void pl_geom_replay(const qgl__mesh *m)
     for (size_t k = 0; k < m->nprim; k++) {
         const qgl__mesh_prim *p = &m->prim[k];
         int tris = p->mode == GL_QUADS && filled;
-        size_t c = p->chg0, end = p->chg0 + p->nchg, n = tris ? 6 * (p->count / 4) : p->count;
+        size_t n = tris ? 6 * (p->count / 4) : p->count;
+        qgl__matrun r;
+        qgl__matrun_start(gl, &r, m->chg + p->chg0, p->nchg);
         gl->Begin(tris ? GL_TRIANGLES : p->mode);
         for (size_t j = 0; j < n; j++) {
             size_t i = p->first + (tris ? 4 * (j / 6) + (size_t)split[j % 6] : j);
-            for (; c < end && m->chg[c].vertex <= i; c++)
-                gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
+            if (tris && j % 6 == 0)
+                qgl__matrun_quad(&r, i);
+            if (tris)
+                qgl__matrun_emit(gl, &r, split[j % 6]);
+            else
+                qgl__matrun_to(gl, &r, i);
             for (int a = 0; a < QGL__NATTR; a++)
                 if (v->mask & (1u << a))
                     qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
@@ -550,8 +556,7 @@ static void pl_geom_replay(const qgl__mesh *m)
             gl->Vertex4fv(v->pos + 4 * i);
         }
         gl->End();
-        for (; c < end; c++)
-            gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
+        qgl__matrun_to(gl, &r, SIZE_MAX);
         if (p->mode == GL_QUADS || p->mode == GL_QUAD_STRIP)
             pl_count_passthrough(qgl__nquads(p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP, p->count));
     }

@@ -1,0 +1,58 @@
+/* test_fidelity.c: scenes from real programs whose pictures a replay (QUADGL_METHOD=replay) must
+ * reproduce exactly and the split (QUADGL_METHOD=split) within 2 levels (see pt.h).
+ *
+ * Each scene is the smallest form of a program's drawing that showed a difference: the quads
+ * are non-affine (no plane fits their corners' colours), so a quad split on the other diagonal,
+ * or a corner lit with another corner's material, shows. */
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include "pt.h"
+
+static const float Q[3][4][2] = {
+    {{-0.9f, -0.9f}, {-0.1f, -0.8f}, {-0.2f, -0.1f}, {-0.8f, -0.3f}},
+    {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.8f, -0.2f}, {0.2f, -0.1f}},
+    {{-0.9f, 0.1f}, {-0.1f, 0.2f}, {-0.2f, 0.9f}, {-0.9f, 0.8f}},
+};
+static const float C[3][4][4] = {
+    {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}},
+    {{1, 1, 0, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}},
+    {{0, 0, 0, 1}, {1, 0.5f, 0, 1}, {0, 0, 0, 1}, {0, 0.5f, 1, 1}},
+};
+
+/* squirtorus: lit GL_QUADS in a display list, a glColor and a glMaterialfv(GL_FRONT_AND_BACK,
+ * GL_AMBIENT_AND_DIFFUSE) before every vertex. The driver's list lights each vertex with its
+ * own material and splits each quad 0-1-3, 1-2-3. */
+static void scene_list_materials(pt_run *r)
+{
+    static const float dir[4] = {0.2f, 0.3f, 1, 0};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glNewList(1, GL_COMPILE);
+    glBegin(GL_QUADS);
+    for (int q = 0; q < 3; q++)
+        for (int i = 0; i < 4; i++) {
+            glColor4fv(C[q][(i + 1) % 4]);
+            glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, C[q][i]);
+            glNormal3f(0.1f * (float)i, 0.2f * (float)q - 0.2f, 1);
+            glVertex2fv(Q[q][i]);
+        }
+    glEnd();
+    glEndList();
+    glCallList(1);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
+
+static const pt_scene scenes[] = {
+    {"list_materials", scene_list_materials},
+};
+
+int main(int argc, char **argv)
+{
+    return pt_main(argc, argv, scenes, (int)(sizeof scenes / sizeof scenes[0]));
+}
