@@ -48,8 +48,37 @@ static void scene_list_materials(pt_run *r)
     r->min_quads = 3;
 }
 
+/* spheremonics: the same with the front material only, under two-sided lighting and a light
+ * at a point, one primitive for the whole surface. */
+static void scene_list_front(pt_run *r)
+{
+    static const float pos[4] = {0.5f, 0.5f, 2, 1};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glEnable(GL_NORMALIZE);
+    glLightfv(GL_LIGHT0, GL_POSITION, pos);
+    glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+    glNewList(1, GL_COMPILE);
+    glBegin(GL_QUADS);
+    for (int q = 0; q < 3; q++)
+        for (int i = 0; i < 4; i++) {
+            glNormal3f(0.3f * (float)i - 0.4f, 0.1f * (float)q, q == 1 ? -1.0f : 1.0f);
+            glMaterialfv(GL_FRONT, GL_AMBIENT_AND_DIFFUSE, C[q][i]);
+            glColor3fv(C[q][3 - i]);
+            glVertex2fv(Q[q][i]);
+        }
+    glEnd();
+    glEndList();
+    glCallList(1);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
+
 static const pt_scene scenes[] = {
     {"list_materials", scene_list_materials},
+    {"list_front", scene_list_front},
 };
 
 int main(int argc, char **argv)
