@@ -1268,6 +1268,17 @@ void qgl__matrun_start(struct qgl__gl *gl, qgl__matrun *r, const qgl__change *ch
     }
 }
 
+int qgl__matrun_leading(const qgl__change *chg, size_t nchg, size_t first)
+{
+    unsigned all = 0, lead = 0;
+    for (size_t c = 0; c < nchg; c++) {
+        all |= material_bits(&chg[c]);
+        if (chg[c].vertex <= first)
+            lead |= material_bits(&chg[c]);
+    }
+    return all == lead;
+}
+
 void qgl__matrun_quad(qgl__matrun *r, size_t first)
 {
     for (int c = 0; c < 4; c++) {

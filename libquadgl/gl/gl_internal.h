@@ -296,6 +296,9 @@ typedef struct qgl__matrun {
 /* Reads the driver's values of the components the changes set (outside glBegin/glEnd); with gl
  * NULL nothing is read, for qgl__matrun_to only. */
 void qgl__matrun_start(struct qgl__gl *gl, qgl__matrun *r, const qgl__change *chg, size_t nchg);
+/* Whether the changes before vertex first (a primitive's first) set every component the changes
+ * set: then no vertex of the primitive takes a material from before it. */
+int qgl__matrun_leading(const qgl__change *chg, size_t nchg, size_t first);
 /* The materials of the quad of vertices first .. first + 3 (quads in order). */
 void qgl__matrun_quad(qgl__matrun *r, size_t first);
 /* Gives the driver corner c's materials (inside glBegin/glEnd, before its vertex). */
@@ -633,6 +636,8 @@ typedef struct qgl__mesh_prim {
     uint32_t chg0, nchg;      /* its glMaterial calls (vertex indices of the mesh) */
     uint32_t facts0;          /* its first quad's facts */
     uint32_t idx0;            /* GL_QUADS: its first triangle index in the buffer */
+    unsigned given;           /* attributes (QGL__A_EDGE too) given inside its glBegin/glEnd; the
+                                 others were current values (a replay sets them outside) */
 } qgl__mesh_prim;
 
 typedef struct qgl__mesh {
@@ -651,7 +656,8 @@ typedef struct qgl__mesh {
     size_t off_pos, off[QGL__NATTR], off_edge, off_idx;
 } qgl__mesh;
 
-int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg);
+int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, unsigned given, const qgl__change *chg,
+                       size_t nchg);
 /* After the last primitive: the facts. 0 without memory. */
 int qgl__mesh_finish(qgl__mesh *m);
 /* Vertex values changed (a current value the mesh takes from the state). */

@@ -76,7 +76,45 @@ static void scene_list_front(pt_run *r)
     r->min_quads = 3;
 }
 
+/* gibson: a lit list whose first quad gives a colour and a material inside glBegin/glEnd and whose
+ * later strips give neither (they are set between the primitives, with the normal): the
+ * driver's list lights those strips with the material as state; a replay through its
+ * immediate mode kept the material per vertex and rounded differently. */
+static void scene_list_state_attribs(pt_run *r)
+{
+    static const float pos[4] = {0.3f, 0.6f, 2, 1}, c0[4] = {0.02f, 0.02f, 0.3f, 1}, c1[4] = {0.54f, 0.17f, 0.89f, 1};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, pos);
+    glNewList(1, GL_COMPILE);
+    glBegin(GL_QUADS);
+    glColor4fv(c0);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, c0);
+    for (int i = 0; i < 4; i++)
+        glVertex2fv(Q[0][i]);
+    glEnd();
+    glColor4fv(c1);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, c1);
+    for (int q = 1; q < 3; q++) {
+        glPushMatrix();
+        glTranslatef(0.01f * (float)q, 0, 0);
+        glNormal3f(0.1f * (float)q, 0.2f, 1);
+        glBegin(GL_QUAD_STRIP);
+        for (int i = 0; i < 4; i++)
+            glVertex2fv(Q[q][i ^ (i >> 1)]);
+        glEnd();
+        glPopMatrix();
+    }
+    glEndList();
+    glCallList(1);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
+
 static const pt_scene scenes[] = {
+    {"list_state_attribs", scene_list_state_attribs},
     {"list_materials", scene_list_materials},
     {"list_front", scene_list_front},
 };
