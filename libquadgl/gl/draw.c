@@ -935,6 +935,27 @@ static void apply_changes(qgl_context *ctx, size_t before)
     }
 }
 
+/* Quads [first, first + n) of a display list's GL_QUADS as the driver's lists draw them where
+ * polygons are filled: the triangles 0-1-3, 1-2-3, each vertex with its own materials. */
+static void replay_list_quads(qgl_context *ctx, const qgl__verts *v, size_t first, size_t n)
+{
+    static const int split[6] = {0, 1, 3, 1, 2, 3};
+    int own = v == ctx->chg_verts && ctx->chg_next < ctx->nchg;
+    qgl__matrun r;
+    qgl__matrun_start(&ctx->gl, &r, own ? ctx->chg + ctx->chg_next : NULL, own ? ctx->nchg - ctx->chg_next : 0);
+    ctx->gl.Begin(GL_TRIANGLES);
+    for (size_t j = 0; j < 6 * (n / 4); j++) {
+        size_t i = first + 4 * (j / 6) + (size_t)split[j % 6];
+        if (j % 6 == 0)
+            qgl__matrun_quad(&r, i);
+        qgl__matrun_emit(&ctx->gl, &r, split[j % 6]);
+        replay_vertex(&ctx->gl, v, i);
+    }
+    ctx->gl.End();
+    ctx->chg_next += r.next;
+    ctx->stats.draws++;
+}
+
 static void replay(qgl_context *ctx, GLenum mode, const qgl__verts *v, size_t first, size_t n)
 {
     ctx->gl.Begin(mode);
@@ -967,6 +988,9 @@ static void draw_replay(qgl_context *ctx, const qgl__state *st, const qgl__verts
             qgl__subdivide(ctx, st, v, topo, q, &ctx->sub);
         ctx->stats.subdiv_triangles += ctx->sub.n / 3;
         replay(ctx, GL_TRIANGLES, &ctx->sub, 0, ctx->sub.n);
+    } else if (topo == QGL_QUADS && ctx->list_quads && st->polygon_mode[0] == GL_FILL &&
+               st->polygon_mode[1] == GL_FILL) {
+        replay_list_quads(ctx, v, 4 * q0, 4 * nq);
     } else if (topo == QGL_QUADS) {
         replay(ctx, GL_QUADS, v, 4 * q0, 4 * nq);
     } else {
@@ -1218,6 +1242,76 @@ static void material_change(float cur[QGL__MATERIAL_FLOATS], const qgl__change *
     }
 }
 
+/* The components (bit f * 5 + k: face f, material_pnames[k], k = 4 the shininess) a change sets. */
+static unsigned material_bits(const qgl__change *c)
+{
+    unsigned bits = 0;
+    for (int f = 0; f < 2; f++) {
+        if ((f == 0 && c->face == GL_BACK) || (f == 1 && c->face == GL_FRONT))
+            continue;
+        for (int k = 0; k < 4; k++)
+            if (c->pname == material_pnames[k] || (c->pname == GL_AMBIENT_AND_DIFFUSE && k < 2))
+                bits |= 1u << (5 * f + k);
+        if (c->pname == GL_SHININESS)
+            bits |= 1u << (5 * f + 4);
+    }
+    return bits;
+}
+
+void qgl__matrun_start(struct qgl__gl *gl, qgl__matrun *r, const qgl__change *chg, size_t nchg)
+{
+    r->chg = chg, r->nchg = nchg, r->next = 0, r->given = 0;
+    for (size_t c = 0; c < nchg && gl; c++)
+        r->given |= material_bits(&chg[c]);
+    for (int f = 0; f < 2; f++) {
+        GLenum face = f ? GL_BACK : GL_FRONT;
+        for (int k = 0; k < 4; k++)
+            if (r->given & (1u << (5 * f + k)))
+                gl->GetMaterialfv(face, material_pnames[k], r->cur + 16 * f + 4 * k);
+        if (r->given & (1u << (5 * f + 4)))
+            gl->GetMaterialfv(face, GL_SHININESS, r->cur + 32 + f);
+    }
+}
+
+int qgl__matrun_leading(const qgl__change *chg, size_t nchg, size_t first)
+{
+    unsigned all = 0, lead = 0;
+    for (size_t c = 0; c < nchg; c++) {
+        all |= material_bits(&chg[c]);
+        if (chg[c].vertex <= first)
+            lead |= material_bits(&chg[c]);
+    }
+    return all == lead;
+}
+
+void qgl__matrun_quad(qgl__matrun *r, size_t first)
+{
+    for (int c = 0; c < 4; c++) {
+        for (; r->next < r->nchg && r->chg[r->next].vertex <= first + (size_t)c; r->next++)
+            material_change(r->cur, &r->chg[r->next]);
+        memcpy(r->corner[c], r->cur, sizeof r->cur);
+    }
+}
+
+void qgl__matrun_emit(struct qgl__gl *gl, const qgl__matrun *r, int corner)
+{
+    const float *m = r->corner[corner];
+    for (int f = 0; f < 2; f++) {
+        GLenum face = f ? GL_BACK : GL_FRONT;
+        for (int k = 0; k < 4; k++)
+            if (r->given & (1u << (5 * f + k)))
+                gl->Materialfv(face, material_pnames[k], m + 16 * f + 4 * k);
+        if (r->given & (1u << (5 * f + 4)))
+            gl->Materialfv(face, GL_SHININESS, m + 32 + f);
+    }
+}
+
+void qgl__matrun_to(struct qgl__gl *gl, qgl__matrun *r, size_t vertex)
+{
+    for (; r->next < r->nchg && r->chg[r->next].vertex <= vertex; r->next++)
+        gl->Materialfv(r->chg[r->next].face, r->chg[r->next].pname, r->chg[r->next].v);
+}
+
 /* The glMaterial calls of a lit batch as per-vertex materials (the driver's material before
  * the batch, then each change from its vertex on), so the shader path lights every corner
  * with its own material in one draw, as fixed function does per vertex, instead of one draw
@@ -1285,6 +1379,7 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     if (st.order_free && topo == QGL_QUADS && !nchg && group_by_path(ctx, v, nq))
         v = &ctx->grouped;
     ctx->chg = chg, ctx->nchg = nchg, ctx->chg_next = 0, ctx->chg_verts = v;
+    ctx->list_quads = (flags & QGL__DRAW_LIST) != 0;
     ctx->stats.quads += nq;
     int arrays = 0;
     for (size_t q = 0; q < nq && !arrays; q++)

@@ -282,6 +282,31 @@ typedef struct qgl__change {
     float v[4];
 } qgl__change;
 
+/* The materials of GL_QUADS drawn as the driver's display lists draw them, the triangles 0-1-3,
+ * 1-2-3 of each quad: every vertex is lit with the material in force when it was given, so
+ * before each vertex given again or early, every component the changes set is given anew
+ * (qgl__matrun_emit), as the driver's lists keep a material per vertex. */
+typedef struct qgl__matrun {
+    const qgl__change *chg;
+    size_t nchg, next;        /* the changes, the first not yet in cur */
+    unsigned given;           /* components the changes set (draw.c's material_bits) */
+    float cur[QGL__MATERIAL_FLOATS];       /* as of the last corner passed */
+    float corner[4][QGL__MATERIAL_FLOATS]; /* the current quad's corners' */
+} qgl__matrun;
+/* Reads the driver's values of the components the changes set (outside glBegin/glEnd); with gl
+ * NULL nothing is read, for qgl__matrun_to only. */
+void qgl__matrun_start(struct qgl__gl *gl, qgl__matrun *r, const qgl__change *chg, size_t nchg);
+/* Whether the changes before vertex first (a primitive's first) set every component the changes
+ * set: then no vertex of the primitive takes a material from before it. */
+int qgl__matrun_leading(const qgl__change *chg, size_t nchg, size_t first);
+/* The materials of the quad of vertices first .. first + 3 (quads in order). */
+void qgl__matrun_quad(qgl__matrun *r, size_t first);
+/* Gives the driver corner c's materials (inside glBegin/glEnd, before its vertex). */
+void qgl__matrun_emit(struct qgl__gl *gl, const qgl__matrun *r, int corner);
+/* Vertices given in order: the driver gets the changes due up to vertex (SIZE_MAX: all, after
+ * glEnd) as they were made. */
+void qgl__matrun_to(struct qgl__gl *gl, qgl__matrun *r, size_t vertex);
+
 /* The driver's current value of attribute a is set to v (qgl__attribs[a].floats of them). */
 void qgl__set_current(struct qgl__gl *gl, int a, const float *v);
 /* Client array of attribute a: enabled or not, from ptr (floats, tightly packed). */
@@ -508,6 +533,7 @@ struct qgl_context {
     const qgl__change *chg;   /* the drawing batch's material changes, the next one due */
     size_t nchg, chg_next;
     const qgl__verts *chg_verts;
+    int list_quads;           /* the drawing batch is a display list's (QGL__DRAW_LIST) */
     GLint *multi_first;       /* mesh.c: glMultiDrawArrays' arguments */
     const void **multi_offset;
     size_t multi_cap3;
@@ -566,8 +592,10 @@ int qgl__draw(qgl_context *ctx, const qgl__verts *v, qgl_topology topo);
 enum {
     QGL__DRAW_IMMEDIATE = 1, /* v was captured from glBegin/glEnd and the caller sets the current
                                 attributes afterwards: split runs may be replayed as such */
-    QGL__DRAW_ARRAYS = 2     /* with IMMEDIATE: split runs are drawn from our arrays all the same
+    QGL__DRAW_ARRAYS = 2,    /* with IMMEDIATE: split runs are drawn from our arrays all the same
                                 (a batch large enough that one upload costs less than its calls) */
+    QGL__DRAW_LIST = 4       /* v is a display list's: its GL_QUADS replayed as the driver's lists
+                                draw them (qgl__matrun) */
 };
 int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
                     const qgl__change *chg, size_t nchg);
@@ -608,6 +636,8 @@ typedef struct qgl__mesh_prim {
     uint32_t chg0, nchg;      /* its glMaterial calls (vertex indices of the mesh) */
     uint32_t facts0;          /* its first quad's facts */
     uint32_t idx0;            /* GL_QUADS: its first triangle index in the buffer */
+    unsigned given;           /* attributes (QGL__A_EDGE too) given inside its glBegin/glEnd; the
+                                 others were current values (a replay sets them outside) */
 } qgl__mesh_prim;
 
 typedef struct qgl__mesh {
@@ -626,7 +656,8 @@ typedef struct qgl__mesh {
     size_t off_pos, off[QGL__NATTR], off_edge, off_idx;
 } qgl__mesh;
 
-int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg);
+int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, unsigned given, const qgl__change *chg,
+                       size_t nchg);
 /* After the last primitive: the facts. 0 without memory. */
 int qgl__mesh_finish(qgl__mesh *m);
 /* Vertex values changed (a current value the mesh takes from the state). */

@@ -34,12 +34,14 @@ static int grow(void **p, size_t *cap, size_t n, size_t elem)
     return 1;
 }
 
-int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, const qgl__change *chg, size_t nchg)
+int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, unsigned given, const qgl__change *chg,
+                       size_t nchg)
 {
     qgl__mesh_prim *last = m->nprim ? &m->prim[m->nprim - 1] : NULL;
     /* Quads are independent: GL_QUADS primitives in a row are one (a list of single quads is
      * then planned and drawn once, not once a quad). */
-    if (last && mode == GL_QUADS && last->mode == GL_QUADS && !nchg && !last->nchg && count % 4 == 0 &&
+    if (last && mode == GL_QUADS && last->mode == GL_QUADS && !nchg && !last->nchg && given == last->given &&
+        count % 4 == 0 &&
         last->count % 4 == 0 && last->first + last->count == first) {
         last->count += (uint32_t)count;
         return 1;
@@ -54,6 +56,7 @@ int qgl__mesh_add_prim(qgl__mesh *m, GLenum mode, size_t first, size_t count, co
     p->chg0 = (uint32_t)m->nchg;
     p->nchg = (uint32_t)nchg;
     p->facts0 = 0;
+    p->given = given;
     for (size_t c = 0; c < nchg; c++) {
         m->chg[m->nchg + c] = chg[c];
         m->chg[m->nchg + c].vertex += (uint32_t)first;
@@ -337,7 +340,8 @@ static int draw_one(qgl_context *ctx, qgl__mesh *m, size_t i, int way)
     for (size_t c = 0; c < p->nchg; c++)
         m->chg[p->chg0 + c].vertex -= p->first;
     if (way == 1 || is_quads(p->mode))
-        k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE, m->chg + p->chg0, p->nchg);
+        k = qgl__draw_batch(ctx, &w, topology(p->mode), &f, QGL__DRAW_IMMEDIATE | QGL__DRAW_LIST, m->chg + p->chg0,
+                            p->nchg);
     else
         qgl__replay_prim(ctx, p->mode, &w, m->chg + p->chg0, p->nchg);
     for (size_t c = 0; c < p->nchg; c++)

@@ -44,11 +44,6 @@ void pl_prim_apply_current(pl_ctx *x, const pl_prim *p)
     (void)x;
 }
 
-static void pl_apply_material(const pl_material *m)
-{
-    REAL(glMaterialfv)(m->face, m->pname, m->v);
-}
-
 int pl_polygons_filled(void)
 {
     GLint mode[2] = {GL_FILL, GL_FILL};
@@ -58,8 +53,8 @@ int pl_polygons_filled(void)
 
 /* The driver gets vertices [v0, v1) of p, with the materials that fall among them; with
  * list_split, GL_QUADS as the triangles 0-1-3, 1-2-3 of each quad, every vertex with its own
- * values (p was back-filled). */
-static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, size_t *mat, int list_split)
+ * values and materials (p was back-filled). */
+static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, qgl__matrun *mat, int list_split)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
     struct qgl__gl *gl = pl_gl();
@@ -68,8 +63,12 @@ static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, size_t *m
     for (size_t j = 0; j < n; j++) {
         size_t i = list_split ? v0 + 4 * (j / 6) + (size_t)split[j % 6] : v0 + j;
         size_t given = list_split ? 0 : i; /* compared with the first vertex giving a value */
-        for (; *mat < p->nmat && p->mat[*mat].vertex <= i; ++*mat)
-            pl_apply_material(&p->mat[*mat]);
+        if (list_split && j % 6 == 0)
+            qgl__matrun_quad(mat, i);
+        if (list_split)
+            qgl__matrun_emit(gl, mat, split[j % 6]);
+        else
+            qgl__matrun_to(gl, mat, i);
         for (int a = 0; a < QGL__NATTR; a++)
             if ((v->mask & (1u << a)) && given >= p->first[a])
                 qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
@@ -86,30 +85,30 @@ static void pl_replay_vertices(const pl_prim *p, size_t v0, size_t v1, size_t *m
 
 /* The driver draws vertices [v0, v1) itself; a display list's GL_QUADS as its own lists draw
  * them when the polygons are filled (lists.c). */
-static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1, size_t *mat)
+static void pl_replay_range(const pl_prim *p, size_t v0, size_t v1)
 {
     int split = p->in_list && p->mode == GL_QUADS && pl_polygons_filled();
+    qgl__matrun mat;
+    qgl__matrun_start(split ? pl_gl() : NULL, &mat, p->mat, p->nmat);
     REAL(glBegin)(split ? GL_TRIANGLES : p->mode);
-    pl_replay_vertices(p, v0, v1, mat, split);
+    pl_replay_vertices(p, v0, v1, &mat, split);
     REAL(glEnd)();
+    qgl__matrun_to(pl_gl(), &mat, SIZE_MAX);
 }
 
 void pl_prim_to_driver(pl_ctx *x, const pl_prim *p)
 {
-    size_t mat = 0;
+    qgl__matrun mat;
+    qgl__matrun_start(NULL, &mat, p->mat, p->nmat);
     REAL(glBegin)(p->mode);
     pl_replay_vertices(p, 0, p->v.n, &mat, 0);
-    for (; mat < p->nmat; mat++)
-        pl_apply_material(&p->mat[mat]);
+    qgl__matrun_to(pl_gl(), &mat, SIZE_MAX);
     pl_prim_apply_current(x, p);
 }
 
 void pl_prim_emit(pl_ctx *x, const pl_prim *p)
 {
-    size_t mat = 0;
-    pl_replay_range(p, 0, p->v.n, &mat);
-    for (; mat < p->nmat; mat++)
-        pl_apply_material(&p->mat[mat]);
+    pl_replay_range(p, 0, p->v.n);
     if (!p->from_arrays)
         pl_prim_apply_current(x, p);
 }
@@ -149,11 +148,8 @@ static void pl_draw_gl(qgl_context *qgl, pl_prim *p)
     if (!p->from_arrays && !p->nmat && v.n >= PL_ARRAYS_FROM)
         flags |= QGL__DRAW_ARRAYS; /* materials inside are given between vertices: replayed */
     if (qgl__draw_batch(qgl, &v, pl_topology(p), NULL, flags, p->mat, p->nmat) < 0) {
-        size_t mat = 0;
         pl_log(PL_LOG_DEBUG, "the GL path refused %zu quads; the driver draws them", pl_prim_quads(p));
-        pl_replay_range(p, 0, p->v.n, &mat);
-        for (; mat < p->nmat; mat++)
-            pl_apply_material(&p->mat[mat]);
+        pl_replay_range(p, 0, p->v.n);
         pl_count_passthrough(pl_prim_quads(p));
     }
 }
@@ -298,8 +294,7 @@ void pl_batch_flush(pl_ctx *x)
         b->mode = GL_QUADS;
         b->v.n = n;
         memset(b->first, 0, sizeof b->first);
-        size_t mat = 0;
-        pl_replay_range(b, 0, n, &mat);
+        pl_replay_range(b, 0, n);
         pl_count_passthrough(n / 4);
         b->v.n = 0;
     }

@@ -46,6 +46,8 @@ typedef struct pl_geom {
     float filled[QGL__NATTR][4];   /* the value those vertices hold now */
     unsigned char filled_edge;
     unsigned filled_valid;
+    GLuint dl;                /* QUADGL_METHOD=replay: the driver's list of its replay (0: none) */
+    int dl_filled;            /* the polygon mode it was compiled for (pl_polygons_filled) */
 } pl_geom;
 
 typedef struct pl_item {
@@ -107,6 +109,8 @@ static void pl_list_free(pl_list *l)
     for (size_t i = 0; i < l->n; i++) {
         pl_item *it = &l->items[i];
         if (it->geom) {
+            if (gl && it->geom->dl)
+                REAL(glDeleteLists)(it->geom->dl, 1);
             qgl__mesh_free(gl, l->share, &it->geom->m);
             free(it->geom);
         }
@@ -397,7 +401,7 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
     }
     m->mask = mask;
     m->n = base + n;
-    return qgl__mesh_add_prim(&g->m, p->mode, base, n, p->mat, p->nmat);
+    return qgl__mesh_add_prim(&g->m, p->mode, base, n, p->v.mask & (QGL__A_ATTRIBS | QGL__A_EDGE), p->mat, p->nmat);
 }
 
 void pl_list_add_prim(pl_ctx *x, const pl_prim *p)
@@ -526,33 +530,45 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 
 /* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS, when
  * the polygons are filled, as the triangles its display lists split them into (0-1-3, 1-2-3),
- * not its immediate mode's. */
-static void pl_geom_replay(const qgl__mesh *m)
+ * not its immediate mode's, each vertex with its own materials (qgl__matrun). */
+static void pl_geom_replay(const pl_geom *g, int count)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
     struct qgl__gl *gl = pl_gl();
+    const qgl__mesh *m = &g->m;
     const qgl__verts *v = &m->v;
     int filled = pl_polygons_filled();
     for (size_t k = 0; k < m->nprim; k++) {
         const qgl__mesh_prim *p = &m->prim[k];
         int tris = p->mode == GL_QUADS && filled;
-        size_t c = p->chg0, end = p->chg0 + p->nchg, n = tris ? 6 * (p->count / 4) : p->count;
+        size_t n = tris ? 6 * (p->count / 4) : p->count;
+        unsigned given = p->given & v->mask;
+        qgl__matrun r;
+        qgl__matrun_start(gl, &r, m->chg + p->chg0, p->nchg);
+        for (int a = 0; a < QGL__NATTR; a++)
+            if (((v->mask & ~given) & (1u << a)) && p->first >= g->lead[a])
+                qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * p->first);
+        if (((v->mask & ~given) & QGL__A_EDGE) && p->first >= g->lead[QGL__NATTR])
+            gl->EdgeFlag(v->edge[p->first]);
         gl->Begin(tris ? GL_TRIANGLES : p->mode);
         for (size_t j = 0; j < n; j++) {
             size_t i = p->first + (tris ? 4 * (j / 6) + (size_t)split[j % 6] : j);
-            for (; c < end && m->chg[c].vertex <= i; c++)
-                gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
+            if (tris && j % 6 == 0)
+                qgl__matrun_quad(&r, i);
+            if (tris)
+                qgl__matrun_emit(gl, &r, split[j % 6]);
+            else
+                qgl__matrun_to(gl, &r, i);
             for (int a = 0; a < QGL__NATTR; a++)
-                if (v->mask & (1u << a))
+                if (given & (1u << a))
                     qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
-            if (v->mask & QGL__A_EDGE)
+            if (given & QGL__A_EDGE)
                 gl->EdgeFlag(v->edge[i]);
             gl->Vertex4fv(v->pos + 4 * i);
         }
         gl->End();
-        for (; c < end; c++)
-            gl->Materialfv(m->chg[c].face, m->chg[c].pname, m->chg[c].v);
-        if (p->mode == GL_QUADS || p->mode == GL_QUAD_STRIP)
+        qgl__matrun_to(gl, &r, SIZE_MAX);
+        if (count && (p->mode == GL_QUADS || p->mode == GL_QUAD_STRIP))
             pl_count_passthrough(qgl__nquads(p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP, p->count));
     }
 }
@@ -586,6 +602,51 @@ static void pl_geom_lead(pl_ctx *x, pl_geom *g)
         qgl__mesh_changed(&g->m);
 }
 
+/* Whether the replay of g may be compiled once into a driver list: what it takes from the state
+ * when it runs (current values before an attribute is first given, materials before the first
+ * change of a primitive) it must take from the state, not from its vertices. */
+static int pl_geom_compilable(const pl_geom *g)
+{
+    const qgl__mesh *m = &g->m;
+    for (int a = 0; a <= QGL__NATTR; a++) {
+        int at_start = !g->lead[a];
+        for (size_t k = 0; k < m->nprim && !at_start; k++)
+            at_start = m->prim[k].first == g->lead[a];
+        if (!at_start)
+            return 0;
+    }
+    for (size_t k = 0; k < m->nprim; k++)
+        if (!qgl__matrun_leading(m->chg + m->prim[k].chg0, m->prim[k].nchg, m->prim[k].first))
+            return 0;
+    return 1;
+}
+
+/* QUADGL_METHOD=replay: the driver draws g from a list of its own holding the replay, so that
+ * its vertices reach the driver as its lists keep them (the attributes each primitive gave, a
+ * vertex format per run of primitives), not as its immediate mode's, which keeps attributes
+ * given earlier in its vertex format and lights them as inputs rather than as state. */
+static void pl_geom_call(pl_ctx *x, pl_geom *g)
+{
+    int filled = pl_polygons_filled();
+    if (g->dl && g->dl_filled != filled) {
+        REAL(glDeleteLists)(g->dl, 1);
+        g->dl = 0;
+    }
+    if (!g->dl) {
+        g->dl = pl_share_new_name(x->share);
+        g->dl_filled = filled;
+        REAL(glNewList)(g->dl, GL_COMPILE);
+        pl_geom_replay(g, 0);
+        REAL(glEndList)();
+    }
+    REAL(glCallList)(g->dl);
+    for (size_t k = 0; k < g->m.nprim; k++) {
+        const qgl__mesh_prim *p = &g->m.prim[k];
+        if (p->mode == GL_QUADS || p->mode == GL_QUAD_STRIP)
+            pl_count_passthrough(qgl__nquads(p->mode == GL_QUADS ? QGL_QUADS : QGL_QUAD_STRIP, p->count));
+    }
+}
+
 static void pl_geom_exec(pl_ctx *x, pl_geom *g)
 {
     struct qgl__gl *gl;
@@ -597,8 +658,10 @@ static void pl_geom_exec(pl_ctx *x, pl_geom *g)
     if (g->m.nprim) {
         qgl = pl_cfg.replay ? NULL : pl_ctx_qgl(x);
         pl_geom_lead(x, g);
-        if (!qgl || qgl__mesh_draw(qgl, &g->m, x->share) < 0)
-            pl_geom_replay(&g->m);
+        if (pl_cfg.replay && !x->compiling && pl_geom_compilable(g))
+            pl_geom_call(x, g);
+        else if (!qgl || qgl__mesh_draw(qgl, &g->m, x->share) < 0)
+            pl_geom_replay(g, 1);
     }
     gl = pl_gl();
     for (int a = 0; a < QGL__NATTR; a++)
