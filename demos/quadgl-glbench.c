@@ -247,12 +247,13 @@ static unsigned char *frame_of(qgl_context *q, qgl_method m, frame_fn f)
     return img;
 }
 
-/* The method's picture against the per-fragment mvc picture: the largest difference in 8-bit
- * levels and the pixels more than one level apart (the budget is half a level before
- * rounding, so one level is what rounding alone can add). */
+/* The method's picture against the per-fragment picture of the interpolant auto draws smooth
+ * (the view-invariant weights, mvcplane): the largest difference in 8-bit levels and the
+ * pixels more than one level apart (the budget is half a level before rounding, so one level
+ * is what rounding alone can add). */
 static void against_mvc(qgl_context *q, qgl_method m, frame_fn f, int *worst, long *over)
 {
-    unsigned char *a = frame_of(q, m, f), *b = frame_of(q, QGL_METHOD_MVC, f);
+    unsigned char *a = frame_of(q, m, f), *b = frame_of(q, QGL_METHOD_MVC_PLANE, f);
     *worst = 0, *over = 0;
     for (size_t i = 0; a && b && i < (size_t)W * H * 4; i++) {
         int d = abs(a[i] - b[i]);
@@ -287,7 +288,7 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
            name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
            st.mvc / per, st.split / per, st.subdiv / per, st.fallback / per, st.draws / per);
     if (method == QGL_METHOD_AUTO)
-        printf(" | vs mvc picture: max %d levels, %ld values over 1", worst, over);
+        printf(" | vs mvcplane picture: max %d levels, %ld values over 1", worst, over);
     printf("\n");
 }
 
