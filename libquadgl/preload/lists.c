@@ -531,6 +531,33 @@ PL_EXPORT void glDeleteLists(GLuint list, GLsizei range)
 /* The driver draws the mesh's primitives itself, as the calls that made them; GL_QUADS, when
  * the polygons are filled, as the triangles its display lists split them into (0-1-3, 1-2-3),
  * not its immediate mode's, each vertex with its own materials (qgl__matrun). */
+/* The attributes a primitive does not give (not in given) from vertex i's values, outside
+ * glBegin/glEnd, as the program's list sets them between primitives; those before the
+ * geometry's own first value stay the state's. */
+static void pl_geom_state(const pl_geom *g, unsigned given, size_t i)
+{
+    struct qgl__gl *gl = pl_gl();
+    const qgl__verts *v = &g->m.v;
+    unsigned state = v->mask & ~given;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if ((state & (1u << a)) && i >= g->lead[a])
+            qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
+    if ((state & QGL__A_EDGE) && i >= g->lead[QGL__NATTR])
+        gl->EdgeFlag(v->edge[i]);
+}
+
+static int pl_geom_state_differs(const pl_geom *g, unsigned given, size_t i, size_t j)
+{
+    const qgl__verts *v = &g->m.v;
+    unsigned state = v->mask & ~given;
+    for (int a = 0; a < QGL__NATTR; a++) {
+        size_t k = (size_t)qgl__attribs[a].floats;
+        if ((state & (1u << a)) && memcmp(v->attr[a] + k * i, v->attr[a] + k * j, k * sizeof(float)) != 0)
+            return 1;
+    }
+    return (state & QGL__A_EDGE) && v->edge[i] != v->edge[j];
+}
+
 static void pl_geom_replay(const pl_geom *g, int count)
 {
     static const int split[6] = {0, 1, 3, 1, 2, 3};
@@ -545,14 +572,18 @@ static void pl_geom_replay(const pl_geom *g, int count)
         unsigned given = p->given & v->mask;
         qgl__matrun r;
         qgl__matrun_start(gl, &r, m->chg + p->chg0, p->nchg);
-        for (int a = 0; a < QGL__NATTR; a++)
-            if (((v->mask & ~given) & (1u << a)) && p->first >= g->lead[a])
-                qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * p->first);
-        if (((v->mask & ~given) & QGL__A_EDGE) && p->first >= g->lead[QGL__NATTR])
-            gl->EdgeFlag(v->edge[p->first]);
+        pl_geom_state(g, given, p->first);
         gl->Begin(tris ? GL_TRIANGLES : p->mode);
         for (size_t j = 0; j < n; j++) {
             size_t i = p->first + (tris ? 4 * (j / 6) + (size_t)split[j % 6] : j);
+            /* GL_QUADS primitives in a row are one here (qgl__mesh_add_prim): the values set
+             * between them change at a quad's first vertex */
+            if (p->mode == GL_QUADS && j > 0 && (tris ? j % 6 == 0 : j % 4 == 0) &&
+                pl_geom_state_differs(g, given, i, i - 4)) {
+                gl->End();
+                pl_geom_state(g, given, i);
+                gl->Begin(tris ? GL_TRIANGLES : p->mode);
+            }
             if (tris && j % 6 == 0)
                 qgl__matrun_quad(&r, i);
             if (tris)

@@ -113,7 +113,36 @@ static void scene_list_state_attribs(pt_run *r)
     r->min_quads = 3;
 }
 
+/* A list of GL_QUADS primitives in a row with the normal and the colour set between them, never
+ * inside (a cube drawn face by face): the primitives share one run of quads, and each must
+ * still be lit with its own values. */
+static void scene_list_between(pt_run *r)
+{
+    static const float dir[4] = {0.3f, 0.5f, 1, 0};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glEnable(GL_COLOR_MATERIAL);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glNewList(1, GL_COMPILE);
+    for (int q = 0; q < 3; q++) {
+        glNormal3f(0.4f * (float)(q - 1), 0.3f * (float)q, 1);
+        glColor4f(0.3f + 0.3f * (float)q, 0.8f - 0.25f * (float)q, 0.5f, 1);
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++)
+            glVertex2fv(Q[q][i]);
+        glEnd();
+    }
+    glEndList();
+    glCallList(1);
+    glDisable(GL_COLOR_MATERIAL);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
+
 static const pt_scene scenes[] = {
+    {"list_between", scene_list_between},
     {"list_state_attribs", scene_list_state_attribs},
     {"list_materials", scene_list_materials},
     {"list_front", scene_list_front},
