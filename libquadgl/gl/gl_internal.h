@@ -423,6 +423,9 @@ typedef struct qgl__state {
     int nonaffine;            /* per-vertex work whose result is not affine in the captured
                                  attributes (smooth lighting, sphere map...): never split exactly */
     int polygon_offset;       /* GL_POLYGON_OFFSET_FILL (needs rasterizer depth) */
+    int blend_free;           /* no blending, stencil test or logic op (ORDER group): a pixel a
+                                 triangle edge covers twice or not at all shows as no more than
+                                 the colour one triangle or the other gives it */
     int order_free;           /* the nearest fragment wins whatever the order quads are drawn in
                                  (depth tested against a depth buffer, written, no blending,
                                  stencil or logic op): a batch may be drawn grouped by path */

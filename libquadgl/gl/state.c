@@ -426,10 +426,10 @@ static void query_order(qgl_context *ctx, qgl__state *st)
     gl->GetBooleanv(GL_DEPTH_WRITEMASK, &mask);
     gl->GetIntegerv(GL_DEPTH_FUNC, &func);
     gl->GetIntegerv(GL_DEPTH_BITS, &bits);
+    st->blend_free = !gl->IsEnabled(GL_BLEND) && !gl->IsEnabled(GL_STENCIL_TEST) && !gl->IsEnabled(GL_COLOR_LOGIC_OP);
     st->order_free = gl->IsEnabled(GL_DEPTH_TEST) && mask && bits > 0 &&
                      (func == GL_LESS || func == GL_LEQUAL || func == GL_GREATER || func == GL_GEQUAL) &&
-                     !gl->IsEnabled(GL_BLEND) && !gl->IsEnabled(GL_STENCIL_TEST) &&
-                     !gl->IsEnabled(GL_COLOR_LOGIC_OP);
+                     st->blend_free;
 }
 
 static void query_ffp_group(qgl_context *ctx, qgl__state *st)

@@ -227,9 +227,13 @@ static int pl_batchable(pl_ctx *x, const pl_prim *p)
         return 0;
     if (p->mode == GL_QUADS)
         return 1;
-    /* strips are unrolled: not where the driver draws them as they are (outlines, feedback) */
+    /* strips are unrolled: not where the driver draws them as they are (outlines, feedback),
+     * nor where its own triangles' vertex order shows: the unrolled quads' triangles are the
+     * strip's, but begin at other vertices, and the rasterizer may then give a pixel on their
+     * shared edge to both or neither, which blending adds up (hypnowheel) */
     const qgl__state *st = qgl__state_now(pl_ctx_qgl(x));
-    return st->render_mode == GL_RENDER && st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL;
+    return st->render_mode == GL_RENDER && st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL &&
+           st->blend_free;
 }
 
 /* Appends p's whole quads to the batch (a strip's unrolled as the GL path draws a list's:

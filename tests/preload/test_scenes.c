@@ -9,6 +9,7 @@
  * interpolated by mean value weights. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 #include <sys/resource.h>
 
@@ -594,6 +595,33 @@ static void scene_list_strips(pt_run *r)
     r->min_quads = 24;
 }
 
+/* Thin quad strips of a spiral, one glBegin/glEnd each, added up by blending (a hypnosis
+ * wheel): where the driver's triangles leave a shared edge's pixel to both or to neither, the
+ * sum shows it, so the strips must reach the rasterizer as the driver's own strips do. Each
+ * strip has one colour: every method's picture is the driver's. */
+static void scene_strip_blend(pt_run *r)
+{
+    pt_begin_frame();
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (int arm = 0; arm < 48; arm++) {
+        float a0 = 6.2831853f * (float)arm / 48.0f;
+        glBegin(GL_QUAD_STRIP);
+        for (int k = 0; k <= 40; k++) {
+            float t = (float)k / 40.0f, rad = 0.02f + 1.3f * t, a = a0 + 3.1f * t * t;
+            for (int side = 0; side < 2; side++) {
+                float w = a + (side ? 0.3f : 0.0f);
+                glColor4f(0.05f + 0.1f * (float)(arm % 3), 0.1f, 0.15f - 0.05f * (float)(arm % 3), 1);
+                glVertex2f(rad * cosf(w), rad * sinf(w));
+            }
+        }
+        glEnd();
+    }
+    glDisable(GL_BLEND);
+    r->native_equal = 1;
+    r->min_quads = 48 * 40;
+}
+
 /* A display list alternating primitives the driver draws as they are (triangles, a fan, affine
  * quads) with strips and quads that need smoothing, drawn with the depth test on, where the
  * order of primitives cannot show: the library may draw it by kind, a draw per mode and one
@@ -1073,6 +1101,7 @@ static const pt_scene scenes[] = {
     {"materials", scene_materials},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
+    {"strip_blend", scene_strip_blend},
     {"list_depth", scene_list_depth},
 };
 
