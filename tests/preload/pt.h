@@ -19,6 +19,19 @@
 #define PT_MAX_QUADS 64
 #define PT_MAX_VALUES 256
 
+/* Three non-affine quads of the scenes (colour corners that no plane fits: a quad split on the
+ * other diagonal, or a corner with another corner's values, shows). */
+static const float Q[3][4][2] = {
+    {{-0.9f, -0.9f}, {-0.1f, -0.8f}, {-0.2f, -0.1f}, {-0.8f, -0.3f}},
+    {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.8f, -0.2f}, {0.2f, -0.1f}},
+    {{-0.9f, 0.1f}, {-0.1f, 0.2f}, {-0.2f, 0.9f}, {-0.9f, 0.8f}},
+};
+static const float C[3][4][4] = {
+    {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}},
+    {{1, 1, 0, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}},
+    {{0, 0, 0, 1}, {1, 0.5f, 0, 1}, {0, 0, 0, 1}, {0, 0.5f, 1, 1}},
+};
+
 typedef struct pt_quad {
     float v[4][2];   /* corners in normalized device coordinates, GL order */
     float c[4][4];   /* colours (RGBA) at the corners */

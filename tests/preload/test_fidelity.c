@@ -10,16 +10,25 @@
 
 #include "pt.h"
 
-static const float Q[3][4][2] = {
-    {{-0.9f, -0.9f}, {-0.1f, -0.8f}, {-0.2f, -0.1f}, {-0.8f, -0.3f}},
-    {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.8f, -0.2f}, {0.2f, -0.1f}},
-    {{-0.9f, 0.1f}, {-0.1f, 0.2f}, {-0.2f, 0.9f}, {-0.9f, 0.8f}},
-};
-static const float C[3][4][4] = {
-    {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}},
-    {{1, 1, 0, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}},
-    {{0, 0, 0, 1}, {1, 0.5f, 0, 1}, {0, 0, 0, 1}, {0, 0.5f, 1, 1}},
-};
+/* A frame lit by light 0 at pos (directional with w = 0), a display list 1 being compiled. */
+static void lit_list(const float pos[4])
+{
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, pos);
+    glNewList(1, GL_COMPILE);
+}
+
+/* Ends the list, draws it, and asks for the driver's picture of its three quads. */
+static void call_list(pt_run *r)
+{
+    glEndList();
+    glCallList(1);
+    glDisable(GL_LIGHTING);
+    r->native_equal = 1;
+    r->min_quads = 3;
+}
 
 /* squirtorus: lit GL_QUADS in a display list, a glColor and a glMaterialfv(GL_FRONT_AND_BACK,
  * GL_AMBIENT_AND_DIFFUSE) before every vertex. The driver's list lights each vertex with its
@@ -27,11 +36,7 @@ static const float C[3][4][4] = {
 static void scene_list_materials(pt_run *r)
 {
     static const float dir[4] = {0.2f, 0.3f, 1, 0};
-    pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
-    glLightfv(GL_LIGHT0, GL_POSITION, dir);
-    glNewList(1, GL_COMPILE);
+    lit_list(dir);
     glBegin(GL_QUADS);
     for (int q = 0; q < 3; q++)
         for (int i = 0; i < 4; i++) {
@@ -41,11 +46,7 @@ static void scene_list_materials(pt_run *r)
             glVertex2fv(Q[q][i]);
         }
     glEnd();
-    glEndList();
-    glCallList(1);
-    glDisable(GL_LIGHTING);
-    r->native_equal = 1;
-    r->min_quads = 3;
+    call_list(r);
 }
 
 /* spheremonics: the same with the front material only, under two-sided lighting and a light
@@ -53,13 +54,9 @@ static void scene_list_materials(pt_run *r)
 static void scene_list_front(pt_run *r)
 {
     static const float pos[4] = {0.5f, 0.5f, 2, 1};
-    pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
     glEnable(GL_NORMALIZE);
-    glLightfv(GL_LIGHT0, GL_POSITION, pos);
     glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
-    glNewList(1, GL_COMPILE);
+    lit_list(pos);
     glBegin(GL_QUADS);
     for (int q = 0; q < 3; q++)
         for (int i = 0; i < 4; i++) {
@@ -69,11 +66,7 @@ static void scene_list_front(pt_run *r)
             glVertex2fv(Q[q][i]);
         }
     glEnd();
-    glEndList();
-    glCallList(1);
-    glDisable(GL_LIGHTING);
-    r->native_equal = 1;
-    r->min_quads = 3;
+    call_list(r);
 }
 
 /* gibson: a lit list whose first quad gives a colour and a material inside glBegin/glEnd and whose
@@ -83,11 +76,7 @@ static void scene_list_front(pt_run *r)
 static void scene_list_state_attribs(pt_run *r)
 {
     static const float pos[4] = {0.3f, 0.6f, 2, 1}, c0[4] = {0.02f, 0.02f, 0.3f, 1}, c1[4] = {0.54f, 0.17f, 0.89f, 1};
-    pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
-    glLightfv(GL_LIGHT0, GL_POSITION, pos);
-    glNewList(1, GL_COMPILE);
+    lit_list(pos);
     glBegin(GL_QUADS);
     glColor4fv(c0);
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, c0);
@@ -106,11 +95,7 @@ static void scene_list_state_attribs(pt_run *r)
         glEnd();
         glPopMatrix();
     }
-    glEndList();
-    glCallList(1);
-    glDisable(GL_LIGHTING);
-    r->native_equal = 1;
-    r->min_quads = 3;
+    call_list(r);
 }
 
 /* A list of GL_QUADS primitives in a row with the normal and the colour set between them, never
@@ -119,12 +104,8 @@ static void scene_list_state_attribs(pt_run *r)
 static void scene_list_between(pt_run *r)
 {
     static const float dir[4] = {0.3f, 0.5f, 1, 0};
-    pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
     glEnable(GL_COLOR_MATERIAL);
-    glLightfv(GL_LIGHT0, GL_POSITION, dir);
-    glNewList(1, GL_COMPILE);
+    lit_list(dir);
     for (int q = 0; q < 3; q++) {
         glNormal3f(0.4f * (float)(q - 1), 0.3f * (float)q, 1);
         glColor4f(0.3f + 0.3f * (float)q, 0.8f - 0.25f * (float)q, 0.5f, 1);
@@ -133,12 +114,8 @@ static void scene_list_between(pt_run *r)
             glVertex2fv(Q[q][i]);
         glEnd();
     }
-    glEndList();
-    glCallList(1);
+    call_list(r);
     glDisable(GL_COLOR_MATERIAL);
-    glDisable(GL_LIGHTING);
-    r->native_equal = 1;
-    r->min_quads = 3;
 }
 
 static const pt_scene scenes[] = {

@@ -19,17 +19,7 @@
 
 #include "pt.h"
 
-/* Three non-affine quads (colour corners that no plane fits) and a two-quad strip. */
-static const float Q[3][4][2] = {
-    {{-0.9f, -0.9f}, {-0.1f, -0.8f}, {-0.2f, -0.1f}, {-0.8f, -0.3f}},
-    {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.8f, -0.2f}, {0.2f, -0.1f}},
-    {{-0.9f, 0.1f}, {-0.1f, 0.2f}, {-0.2f, 0.9f}, {-0.9f, 0.8f}},
-};
-static const float C[3][4][4] = {
-    {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}},
-    {{1, 1, 0, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}},
-    {{0, 0, 0, 1}, {1, 0.5f, 0, 1}, {0, 0, 0, 1}, {0, 0.5f, 1, 1}},
-};
+/* A two-quad strip (with pt.h's three non-affine quads Q, C). */
 static const float S[6][2] = {{0.1f, 0.1f}, {0.1f, 0.9f}, {0.5f, 0.15f}, {0.45f, 0.85f}, {0.9f, 0.1f}, {0.85f, 0.9f}};
 static const float SC[6][4] = {{1, 0, 0, 1}, {0, 0, 1, 1}, {0, 1, 0, 1}, {1, 1, 1, 1}, {1, 0, 1, 1}, {0, 0, 0, 1}};
 
