@@ -330,12 +330,12 @@ int main(int argc, char **argv)
            costs.mvc_px_ns, costs.split_px_ns, costs.grid_tri_ns);
     report("full-screen non-affine quad (mvc)", q, QGL_METHOD_MVC, setup_ortho, fullscreen, frames, 2.0);
     report("full-screen non-affine quad (mvcplane)", q, QGL_METHOD_MVC_PLANE, setup_ortho, fullscreen, frames, 2.0);
-    report("full-screen non-affine quad (auto)", q, QGL_METHOD_AUTO, setup_ortho, fullscreen, frames, 1.1);
+    report("full-screen non-affine quad (auto)", q, QGL_METHOD_AUTO, setup_ortho, fullscreen, frames, 2.0);
     report("sphere 48x24 textured (auto)", q, QGL_METHOD_AUTO, setup_persp, sphere, frames, 1.1);
     report("mesh 64x64 colour strips (auto)", q, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
     report("mesh, one draw per strip (auto)", q1, QGL_METHOD_AUTO, setup_persp, mesh, frames, 1.1);
-    report("colour-mapped slice 64x64 (auto)", q, QGL_METHOD_AUTO, setup_persp, slice, frames, 1.1);
-    report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.3);
+    report("colour-mapped slice 64x64 (auto)", q, QGL_METHOD_AUTO, setup_persp, slice, frames, 1.05);
+    report("250k tiny quads, 1M vertices (auto)", q, QGL_METHOD_AUTO, setup_ortho, tiny, frames, 1.1);
     /* the screen-space weights on the same scenes, for AUTO's view-invariant ones above */
     report("sphere 48x24 textured (mvc)", q, QGL_METHOD_MVC, setup_persp, sphere, frames, 99);
     report("mesh 64x64 colour strips (mvc)", q, QGL_METHOD_MVC, setup_persp, mesh, frames, 99);
