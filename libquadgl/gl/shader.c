@@ -857,7 +857,7 @@ static void fs_source(sb *b, const qgl__key *k)
     put(b, "void main() {\n    vec4 lam = weights();\n");
     /* the cover in the plane is exact: nothing of it lies outside the quad */
     if ((k->flags & QGL__KF_DISCARD) && !plane_cover(k))
-        put(b, "    if (any(lessThan(lam, vec4(0.0)))) discard;\n");
+        put(b, "    if (any(lessThan(lam, vec4(-1e-5)))) discard;\n");
     if (frag_clip(k)) {
         /* the in-plane weights reproduce the projection only: the patch point's own */
         put(b, "    vec4 eye = f_eye * %s;\n", patch(k) ? "patch_b" : "lam");
