@@ -153,7 +153,7 @@ static const char fs_src[] =
     "void main() {\n"
     "    vec4 lam = weights();\n"
     "#if DISCARD && !PLANE_COVER\n"
-    "    if (any(lessThan(lam, vec4(0.0)))) discard;\n"
+    "    if (any(lessThan(lam, vec4(-1e-5)))) discard;\n"
     "#endif\n"
     "#if COLOR && FLAT\n"
     "    vec4 col = v_flat;\n"
