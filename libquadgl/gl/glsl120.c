@@ -448,7 +448,7 @@ static int screen_cover(qgl_context *ctx, const qgl__verts *v, const size_t idx[
     int kind = qgl_classify_clip(clip, cov);
     if (kind == QGL_QUAD_EXTERNAL) {
         cov->ntri = 2;
-        static const unsigned char split[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        static const unsigned char split[2][3] = {{0, 1, 3}, {1, 2, 3}}; /* the driver's */
         memcpy(cov->tri, split, sizeof split);
     } else if (kind < 0 || kind == QGL_QUAD_DEGENERATE) {
         return 0;

@@ -500,9 +500,11 @@ static const char gs_cover[] =
     "    vec2 q[4] = vec2[4](Q[0], Q[1], Q[2], Q[3]);\n"
     "    cover(q, diag);\n"
     "#else\n"
+    /* a corner behind the eye: the driver's own split, 0-1-3 and 1-2-3 (the other diagonal's
+     * triangles, clipped, can leave out much of the quad: test_edge) */
     "    if (any(lessThanEqual(w, vec4(0.0)))) {\n"
     "        if (all(lessThanEqual(w, vec4(0.0)))) return;\n"
-    "        quad(0);\n"
+    "        quad(1);\n"
     "        return;\n"
     "    }\n"
     "    vec2 v[4];\n"
