@@ -384,8 +384,7 @@ static void varyings(sb *b, const qgl__key *k, const char *dir)
 /* The quad's plane frame from its object corners (core plane.c in float): origin at the
  * centroid, normal the longest of the diagonals' cross product and the corner normals, first
  * axis along the longer diagonal; Q[i] the corners' in-plane coordinates scaled to at most 1
- * (the weights' products stay in float range and the weights do not change), diag the shorter
- * diagonal. A corner at infinity in object space (w <= 0) makes NDC stand in for the object
+ * (the weights' products stay in float range and the weights do not change). A corner at infinity in object space (w <= 0) makes NDC stand in for the object
  * positions: a valid picture, as view-dependent as the screen-space weights. False when the
  * corners span no plane. */
 static const char gs_plane[] =
@@ -419,12 +418,13 @@ static const char gs_plane[] =
     "    for (int i = 0; i < 4; i++) Q[i] /= r;\n"
     "    c_qx = vec4(Q[0].x, Q[1].x, Q[2].x, Q[3].x);\n"
     "    c_qy = vec4(Q[0].y, Q[1].y, Q[2].y, Q[3].y);\n"
-    "    diag = dot(b, b) < dot(a, a) ? 1 : 0;\n"
     "    return true;\n"
     "}\n";
 
 /* The cover of the 2D quad v (the screen quad, or the quad in its plane): convex along
- * diagonal diag, concave through the reflex corner, a bow-tie as its two lobes. */
+ * the driver's own diagonal (its split's triangles 0-1-3, 1-2-3: the same pixels at the
+ * boundary, where another diagonal's rounding and clipping differ), concave through the
+ * reflex corner, a bow-tie as its two lobes. */
 static const char gs_cover[] =
     "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
     /* triangles (a, a+1, a+2) and (a, a+2, a+3) as one strip: four vertices, not six */
@@ -454,7 +454,7 @@ static const char gs_cover[] =
     "    return vec2(cross2(c - a, d - c), cross2(c - a, b - a)) / den;\n"
     "}\n"
     "bool inside01(vec2 tu) { return all(greaterThanEqual(tu, vec2(0.0))) && all(lessThanEqual(tu, vec2(1.0))); }\n"
-    "void cover(vec2 v[4], int diag) {\n"
+    "void cover(vec2 v[4]) {\n"
     "    int npos = 0, nneg = 0, ipos = 0, ineg = 0;\n"
     "    for (int i = 0; i < 4; i++) {\n"
     "        float k = cross2(v[i] - v[(i + 3) & 3], v[(i + 1) & 3] - v[i]);\n"
@@ -462,7 +462,7 @@ static const char gs_cover[] =
     "        if (k < 0.0) { nneg++; ineg = i; }\n"
     "    }\n"
     "    if (npos + nneg == 0) return;\n"
-    "    if (npos == 0 || nneg == 0) { quad(diag); return; }\n"
+    "    if (npos == 0 || nneg == 0) { quad(1); return; }\n"
     "    if (npos != nneg) {\n"
     "        quad(npos < nneg ? ipos : ineg);\n"
     "        return;\n"
@@ -479,7 +479,7 @@ static const char gs_cover[] =
     "        tri(4, 2, 3); tri(4, 0, 1);\n"
     "        return;\n"
     "    }\n"
-    "    quad(diag);\n"
+    "    quad(1);\n"
     "}\n"
     "void main() {\n"
     "    for (int i = 0; i < 4; i++) C[i] = gl_in[i].gl_Position;\n"
@@ -498,7 +498,7 @@ static const char gs_cover[] =
     "    w_mean = sqrt(min(min(w.x, w.y), min(w.z, w.w)) * max(max(w.x, w.y), max(w.z, w.w)));\n"
     "#endif\n"
     "    vec2 q[4] = vec2[4](Q[0], Q[1], Q[2], Q[3]);\n"
-    "    cover(q, diag);\n"
+    "    cover(q);\n"
     "#else\n"
     /* a corner behind the eye: the driver's own split, 0-1-3 and 1-2-3 (the other diagonal's
      * triangles, clipped, can leave out much of the quad: test_edge) */
@@ -522,7 +522,7 @@ static const char gs_cover[] =
     "    for (int i = 0; i < 4; i++) bound = max(bound, w[i] * dot(max(v[i] - lo, hi - v[i]), u_px));\n"
     "    g_scale = u_px.xyxy / max(bound, 1e-30);\n"
     "#endif\n"
-    "    cover(v, 0);\n"
+    "    cover(v);\n"
     "#endif\n"
     "}\n";
 
@@ -539,7 +539,7 @@ static void gs_source(sb *b, const qgl__key *k)
     if (k->clip && !frag_clip(k))
         put(b, "in vec4 q_eye[];\n");
     if (k->flags & QGL__KF_PLANE)
-        put(b, "in vec4 q_obj[];\nvec2 Q[5];\nvec4 c_qx, c_qy;\nint diag;\nfloat w_mean;\n");
+        put(b, "in vec4 q_obj[];\nvec2 Q[5];\nvec4 c_qx, c_qy;\nfloat w_mean;\n");
     varyings(b, k, "out");
     put(b, "uniform vec2 u_px;\nvec4 C[5];\nvec4 g_scale;\n");
     if (k->clip)
