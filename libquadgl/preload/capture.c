@@ -99,19 +99,24 @@ size_t pl_prim_quads(const pl_prim *p)
 
 /* ---- attributes ------------------------------------------------------------------------------- */
 
-/* Vertices [0, end) of attribute slot a (a row of QGL__ATTRIBS, QGL__NATTR for the edge flag)
- * take the context's current value. */
-static void pl_fill(pl_ctx *x, pl_prim *p, int a, size_t end)
+void pl_verts_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge)
 {
     if (a == QGL__NATTR) {
-        memset(p->v.edge, pl_current_edge(x), end);
+        if (to > from)
+            memset(v->edge + from, edge, to - from);
         return;
     }
-    float value[4];
     int k = qgl__attribs[a].floats;
-    pl_current_value(x, a, value);
-    for (size_t i = 0; i < end; i++)
-        memcpy(p->v.attr[a] + (size_t)k * i, value, (size_t)k * sizeof(float));
+    for (size_t i = from; i < to; i++)
+        memcpy(v->attr[a] + (size_t)k * i, val, (size_t)k * sizeof(float));
+}
+
+void pl_fill_current(pl_ctx *x, qgl__verts *v, int a, size_t from, size_t to)
+{
+    float value[4] = {0, 0, 0, 1};
+    if (a < QGL__NATTR)
+        pl_current_value(x, a, value);
+    pl_verts_fill(v, a, from, to, value, a == QGL__NATTR ? pl_current_edge(x) : 0);
 }
 
 static void pl_fill_generic(pl_prim *p, int g, size_t end)
@@ -128,7 +133,7 @@ void pl_prim_backfill(pl_ctx *x, pl_prim *p)
     for (int a = 0; a <= QGL__NATTR; a++) {
         unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
         if ((p->v.mask & bit) && p->first[a] > 0)
-            pl_fill(x, p, a, p->first[a] < n ? p->first[a] : n);
+            pl_fill_current(x, &p->v, a, 0, p->first[a] < n ? p->first[a] : n);
     }
     for (int g = 0; g < PL_GENERICS; g++)
         if ((p->generic_given & (1u << g)) && p->generic_first[g] > 0)
@@ -150,7 +155,7 @@ static int pl_given(pl_ctx *x, int a)
     p->v.mask |= bit;
     p->first[a] = (uint32_t)p->v.n;
     if (p->v.n && !x->compiling) {
-        pl_fill(x, p, a, p->v.n);
+        pl_fill_current(x, &p->v, a, 0, p->v.n);
         p->first[a] = 0;
     }
     return 0;

@@ -180,20 +180,6 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
 /* Vertices a batch may hold: what an immediate-mode chunk holds. */
 #define PL_BATCH_MAX 16384
 
-/* Vertices [from, to) of b take the current value of slot a (QGL__NATTR: the edge flag). */
-static void pl_batch_fill(pl_ctx *x, qgl__verts *v, int a, size_t from, size_t to)
-{
-    if (a == QGL__NATTR) {
-        memset(v->edge + from, pl_current_edge(x), to - from);
-        return;
-    }
-    float value[4];
-    int k = qgl__attribs[a].floats;
-    pl_current_value(x, a, value);
-    for (size_t i = from; i < to; i++)
-        memcpy(v->attr[a] + (size_t)k * i, value, (size_t)k * sizeof(float));
-}
-
 static unsigned pl_slot_bit(int a)
 {
     return a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
@@ -207,7 +193,7 @@ void pl_batch_keep(pl_ctx *x, int a)
         pl_batch_flush(x);
         return;
     }
-    pl_batch_fill(x, v, a, 0, v->n);
+    pl_fill_current(x, v, a, 0, v->n);
     v->mask |= bit;
 }
 
@@ -249,7 +235,7 @@ static int pl_batch_join(pl_ctx *x, const pl_prim *p)
         return 0;
     for (int a = 0; a <= QGL__NATTR; a++)
         if ((p->v.mask & pl_slot_bit(a)) && !(b->mask & pl_slot_bit(a)))
-            pl_batch_fill(x, b, a, 0, n0);
+            pl_fill_current(x, b, a, 0, n0);
     if (p->mode == GL_QUADS) {
         qgl__verts_copy_range(b, n0, &p->v, 0, n);
     } else {
@@ -260,7 +246,7 @@ static int pl_batch_join(pl_ctx *x, const pl_prim *p)
     }
     for (int a = 0; a <= QGL__NATTR; a++)
         if ((b->mask & pl_slot_bit(a)) && !(p->v.mask & pl_slot_bit(a)))
-            pl_batch_fill(x, b, a, n0, n0 + n);
+            pl_fill_current(x, b, a, n0, n0 + n);
     b->n = n0 + n;
     b->mask = mask;
     return 1;

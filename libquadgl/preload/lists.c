@@ -348,19 +348,6 @@ void pl_list_attrib(pl_ctx *x, int slot, const float v[4])
     }
 }
 
-/* Vertex values of slot a (QGL__NATTR: edge flags) for vertices [from, to) of the mesh. */
-static void pl_geom_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge)
-{
-    if (a == QGL__NATTR) {
-        if (to > from)
-            memset(v->edge + from, edge, to - from);
-        return;
-    }
-    int k = qgl__attribs[a].floats;
-    for (size_t i = from; i < to; i++)
-        memcpy(v->attr[a] + (size_t)k * i, val, (size_t)k * sizeof(float));
-}
-
 /* Appends a finished primitive to the open geometry. Its attributes given only from a later
  * vertex take, before it, the value the item last gave, or (none yet) the current value when
  * the list runs; an attribute the item gave before and the primitive does not, that value. */
@@ -384,7 +371,7 @@ static int pl_geom_add(pl_geom *g, const pl_prim *p)
         if (!(old & bit))
             g->lead[a] = (uint32_t)(base + ((g->set & bit) ? 0 : from));
         if (g->set & bit)
-            pl_geom_fill(m, a, base, base + from, a == QGL__NATTR ? NULL : g->cur[a], g->cur_edge);
+            pl_verts_fill(m, a, base, base + from, a == QGL__NATTR ? NULL : g->cur[a], g->cur_edge);
         if (!given)
             continue;
         if (a == QGL__NATTR) {
@@ -621,7 +608,7 @@ static void pl_geom_lead(pl_ctx *x, pl_geom *g)
         if ((g->filled_valid & bit) &&
             (a == QGL__NATTR ? edge == g->filled_edge : !memcmp(now, g->filled[a], sizeof now)))
             continue;
-        pl_geom_fill(&g->m.v, a, 0, g->lead[a], now, edge);
+        pl_verts_fill(&g->m.v, a, 0, g->lead[a], now, edge);
         if (a == QGL__NATTR)
             g->filled_edge = edge;
         else

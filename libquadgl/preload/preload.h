@@ -277,6 +277,10 @@ static inline void pl_touch_uncaptured(void)
 /* The current value of attribute a (QGL__AT_*; 4 floats), asked of the driver if unknown. */
 void pl_current_value(pl_ctx *x, int a, float out[4]);
 GLboolean pl_current_edge(pl_ctx *x);
+/* Vertices [from, to) of slot a (a row of QGL__ATTRIBS, QGL__NATTR for the edge flag) take
+ * val (edge, for the edge flag); pl_fill_current: the context's current value. */
+void pl_verts_fill(qgl__verts *v, int a, size_t from, size_t to, const float *val, unsigned char edge);
+void pl_fill_current(pl_ctx *x, qgl__verts *v, int a, size_t from, size_t to);
 /* The driver's current value of a changes to v (not while only compiling a list). */
 static inline void pl_note_current(pl_ctx *x, int a, const float v[4])
 {
