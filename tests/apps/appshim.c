@@ -298,6 +298,73 @@ static GLint mask_enter(void)
     return fb;
 }
 
+/* The driver's own footprint of the same quads: which diagonal llvmpipe splits a quad along
+ * depends on the primitive (quads or strip), the provoking vertex and whether anything in the
+ * driver's batch needed clipping, so a concave or bow-tie quad's notch, or a boundary pixel
+ * rounded by one split's triangles and not the other's, may be covered natively and not by the
+ * quad's exact cover. Both splits' four triangles, drawn with the program's positions
+ * (ftransform, as quadgl's shader path and fixed function compute them), cover every pixel
+ * either split can. */
+static GLuint footprint_prog, footprint_failed;
+
+typedef GLuint (*create_shader_fn)(GLenum);
+typedef void (*shader_source_fn)(GLuint, GLsizei, const GLchar *const *, const GLint *);
+typedef GLuint (*create_program_fn)(void);
+typedef void (*uint_uint_fn)(GLuint, GLuint);
+typedef void (*get_programiv_fn)(GLuint, GLenum, GLint *);
+
+static GLuint footprint_program(void)
+{
+    static const char *const src[3] = {
+        "#version 150 compatibility\nvoid main() { gl_Position = ftransform(); }\n",
+        "#version 150 compatibility\nlayout(lines_adjacency) in;\nlayout(triangle_strip, max_vertices = 12) out;\n"
+        "void tri(int a, int b, int c) {\n"
+        "    gl_Position = gl_in[a].gl_Position; EmitVertex();\n"
+        "    gl_Position = gl_in[b].gl_Position; EmitVertex();\n"
+        "    gl_Position = gl_in[c].gl_Position; EmitVertex();\n"
+        "    EndPrimitive();\n"
+        "}\n"
+        "void main() { tri(0, 1, 2); tri(0, 2, 3); tri(0, 1, 3); tri(1, 2, 3); }\n",
+        "#version 150 compatibility\nvoid main() { gl_FragColor = vec4(1.0); }\n"};
+    static const GLenum stage[3] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
+    GLint ok = 0;
+    if (footprint_prog || footprint_failed)
+        return footprint_prog;
+    GLuint p = GL(create_program_fn, "glCreateProgram")();
+    for (int i = 0; i < 3; i++) {
+        GLuint sh = GL(create_shader_fn, "glCreateShader")(stage[i]);
+        GL(shader_source_fn, "glShaderSource")(sh, 1, &src[i], NULL);
+        GL(uint_fn, "glCompileShader")(sh);
+        GL(uint_uint_fn, "glAttachShader")(p, sh);
+        GL(uint_fn, "glDeleteShader")(sh);
+    }
+    GL(uint_fn, "glLinkProgram")(p);
+    GL(get_programiv_fn, "glGetProgramiv")(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        fprintf(stderr, "appshim: the footprint program does not link: the mask is our fragments only\n");
+        GL(uint_fn, "glDeleteProgram")(p);
+        footprint_failed = 1;
+        return 0;
+    }
+    return footprint_prog = p;
+}
+
+/* The mask gets the repeated draw's fragments, then the footprint: clip planes off (this
+ * program writes no clip distance), culling and polygon mode as the program left them. */
+#define MASK_DRAW(call)                                                                            \
+    do {                                                                                           \
+        GLint prog = 0;                                                                            \
+        call;                                                                                      \
+        GL(get_integerv_fn, "glGetIntegerv")(GL_CURRENT_PROGRAM, &prog);                           \
+        if (footprint_program()) {                                                                 \
+            for (int c = 0; c < 8; c++)                                                            \
+                GL(enum_fn, "glDisable")(GL_CLIP_PLANE0 + c);                                      \
+            GL(uint_fn, "glUseProgram")(footprint_prog);                                           \
+            call;                                                                                  \
+            GL(uint_fn, "glUseProgram")((GLuint)prog);                                             \
+        }                                                                                          \
+    } while (0)
+
 SHIM_EXPORT void glDrawArrays(GLenum mode, GLint first, GLsizei count)
 {
     static draw_arrays_fn real;
@@ -306,7 +373,7 @@ SHIM_EXPORT void glDrawArrays(GLenum mode, GLint first, GLsizei count)
         real = (draw_arrays_fn)dlsym(RTLD_NEXT, "glDrawArrays");
     real(mode, first, count);
     if (mode == GL_LINES_ADJACENCY && mask_frame() && (fb = mask_enter()) >= 0) {
-        real(mode, first, count);
+        MASK_DRAW(real(mode, first, count));
         mask_leave(fb);
     }
 }
@@ -319,7 +386,7 @@ SHIM_EXPORT void glDrawElements(GLenum mode, GLsizei count, GLenum type, const v
         real = (draw_elements_fn)dlsym(RTLD_NEXT, "glDrawElements");
     real(mode, count, type, indices);
     if (mode == GL_LINES_ADJACENCY && mask_frame() && (fb = mask_enter()) >= 0) {
-        real(mode, count, type, indices);
+        MASK_DRAW(real(mode, count, type, indices));
         mask_leave(fb);
     }
 }
