@@ -421,10 +421,11 @@ static const char gs_plane[] =
     "    return true;\n"
     "}\n";
 
-/* The cover of the 2D quad v (the screen quad, or the quad in its plane): convex along
- * the driver's own diagonal (its split's triangles 0-1-3, 1-2-3: the same pixels at the
- * boundary, where another diagonal's rounding and clipping differ), concave through the
- * reflex corner, a bow-tie as its two lobes. */
+/* The cover of the 2D quad v (the screen quad, or the quad in its plane): convex along the
+ * diagonal 1-3 (triangles 0-1-3, 1-2-3, as llvmpipe splits GL_QUADS in display lists, under
+ * the first-vertex convention and in any draw that clips: the same boundary pixels there; an
+ * unclipped immediate draw takes 0-2, decided per driver batch, which no cover can follow),
+ * concave through the reflex corner, a bow-tie as its two lobes. */
 static const char gs_cover[] =
     "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
     /* triangles (a, a+1, a+2) and (a, a+2, a+3) as one strip: four vertices, not six */
