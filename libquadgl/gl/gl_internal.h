@@ -398,8 +398,20 @@ enum {
     QGL__D_BIND = 1 << 3,   /* vertex array and array buffer bindings, client active texture */
     QGL__D_ORDER = 1 << 4,  /* what decides whether drawing order shows: depth test, function and
                                writes, the draw framebuffer's depth bits, blending, stencil, logic op */
-    QGL__D_ALL = (1 << 5) - 1
+    QGL__D_TEX = 1 << 5,      /* the textures bound to the units (their formats and sizes) */
+    QGL__D_TEXIMAGE = 1 << 6, /* some texture's level 0 may have changed format or size */
+    QGL__D_ALL = (1 << 7) - 1
 };
+
+/* What the key and the planner need of a texture's level 0, kept by name (state.c): asked of
+ * the driver once per image, not at every bind (GetTexLevelParameter makes some drivers
+ * validate their whole state). */
+enum { QGL__TEX_FACTS = 64 };
+typedef struct qgl__texfacts {
+    GLuint name;
+    uint8_t target, used, ok, format; /* ok: not a depth texture; format: QGL__F_* */
+    float size[3];
+} qgl__texfacts;
 
 typedef struct qgl__state {
     GLint program, render_mode, polygon_mode[2], shade_model, viewport[4], active_texture;
@@ -546,6 +558,7 @@ struct qgl_context {
     size_t multi_cap, multi_cap2;
     qgl__state state;         /* the state of the last draw (state.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
+    qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
     struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
     struct qgl__client_arrays *arrays; /* immediate.c: client arrays qglArrayElement reads */

@@ -36,20 +36,30 @@ static void mat_mul(const double a[16], const double b[16], double r[16])
 
 /* Texture targets in fixed function's priority order (cube map first), with the GL version
  * that has them: querying an unknown one is an error the application would see. */
-static const struct { GLenum target; int version; uint8_t code; } tex_targets[] = {
-    {GL_TEXTURE_CUBE_MAP, 13, QGL__T_CUBE}, {GL_TEXTURE_3D, 12, QGL__T_3D},
-    {GL_TEXTURE_RECTANGLE, 31, QGL__T_RECT}, {GL_TEXTURE_2D, 10, QGL__T_2D}, {GL_TEXTURE_1D, 10, QGL__T_1D}};
+static const struct { GLenum target, binding; int version; uint8_t code; } tex_targets[] = {
+    {GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BINDING_CUBE_MAP, 13, QGL__T_CUBE},
+    {GL_TEXTURE_3D, GL_TEXTURE_BINDING_3D, 12, QGL__T_3D},
+    {GL_TEXTURE_RECTANGLE, GL_TEXTURE_BINDING_RECTANGLE, 31, QGL__T_RECT},
+    {GL_TEXTURE_2D, GL_TEXTURE_BINDING_2D, 10, QGL__T_2D},
+    {GL_TEXTURE_1D, GL_TEXTURE_BINDING_1D, 10, QGL__T_1D}};
 #define NTARGETS (sizeof tex_targets / sizeof tex_targets[0])
 
-/* The enabled target of the active unit with the highest priority (0: none). */
-static int unit_target(qgl_context *ctx, GLenum *target)
+/* The enabled target of the active unit with the highest priority: its tex_targets index, or
+ * -1 for none. */
+static int unit_target(qgl_context *ctx)
 {
     for (size_t t = 0; t < NTARGETS; t++)
-        if (ctx->version >= tex_targets[t].version && ctx->gl.IsEnabled(tex_targets[t].target)) {
-            *target = tex_targets[t].target;
-            return tex_targets[t].code;
-        }
-    return QGL__T_NONE;
+        if (ctx->version >= tex_targets[t].version && ctx->gl.IsEnabled(tex_targets[t].target))
+            return (int)t;
+    return -1;
+}
+
+static int target_index(uint8_t code)
+{
+    for (size_t t = 0; t < NTARGETS; t++)
+        if (tex_targets[t].code == code)
+            return (int)t;
+    return -1;
 }
 
 /* Base-format class of the bound texture's level 0; 0 for a depth texture (compared, or
@@ -181,8 +191,23 @@ static void texture_size(qgl_context *ctx, GLenum target, float size[3])
     }
 }
 
-/* The active unit u (target already known): env, format, texgen, matrix. */
-static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qgl__unit_key *uk)
+/* The level 0 facts of the texture bound to target t of the active unit: kept by name until
+ * the owner marks an image change (QGL__D_TEXIMAGE empties them). */
+static const qgl__texfacts *texture_facts(qgl_context *ctx, int t)
+{
+    GLint name = 0;
+    ctx->gl.GetIntegerv(tex_targets[t].binding, &name);
+    qgl__texfacts *f = &ctx->tex_facts[(GLuint)name % QGL__TEX_FACTS];
+    if (f->used && f->name == (GLuint)name && f->target == tex_targets[t].code)
+        return f;
+    f->used = 1, f->name = (GLuint)name, f->target = tex_targets[t].code;
+    f->ok = (uint8_t)base_format(ctx, tex_targets[t].target, &f->format);
+    texture_size(ctx, tex_targets[t].target, f->size);
+    return f;
+}
+
+/* The active unit u (target t already known): env, format, texgen, matrix. */
+static int query_unit(qgl_context *ctx, qgl__state *st, int u, int t, qgl__unit_key *uk)
 {
     struct qgl__gl *gl = &ctx->gl;
     static const GLint envs[] = {GL_MODULATE, GL_REPLACE, GL_DECAL, GL_BLEND, GL_ADD, GL_COMBINE};
@@ -192,14 +217,14 @@ static int query_unit(qgl_context *ctx, qgl__state *st, int u, GLenum target, qg
     if (e < 0)
         return 0;
     uk->env = (uint8_t)e;
-    if (e == QGL__E_COMBINE) {
-        uint8_t ignored;
-        if (!query_combine(ctx, uk) || !base_format(ctx, target, &ignored))
-            return 0;
-    } else if (!base_format(ctx, target, &uk->format)) {
+    if (e == QGL__E_COMBINE && !query_combine(ctx, uk))
         return 0;
-    }
-    texture_size(ctx, target, st->texsize[u]);
+    const qgl__texfacts *f = texture_facts(ctx, t);
+    if (!f->ok)
+        return 0;
+    if (e != QGL__E_COMBINE)
+        uk->format = f->format;
+    memcpy(st->texsize[u], f->size, sizeof f->size);
     return query_texgen(ctx, uk);
 }
 
@@ -211,17 +236,16 @@ static int query_textures(qgl_context *ctx, qgl__state *st, qgl__key *k)
     for (GLint u = 0; u < ctx->max_units; u++) {
         if (u > 0 || st->active_texture != GL_TEXTURE0)
             gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
-        GLenum target = 0;
-        int code = unit_target(ctx, &target);
-        if (!code)
+        int t = unit_target(ctx);
+        if (t < 0)
             continue;
         if (u >= QGL_MAX_TEXUNITS) {
             ok = 0;
             continue;
         }
-        k->unit[u].target = (uint8_t)code;
+        k->unit[u].target = tex_targets[t].code;
         k->nunits = (uint8_t)(u + 1);
-        ok &= query_unit(ctx, st, u, target, &k->unit[u]);
+        ok &= query_unit(ctx, st, u, t, &k->unit[u]);
     }
     if (ctx->max_units > 1 || st->active_texture != GL_TEXTURE0)
         gl->ActiveTexture((GLenum)st->active_texture);
@@ -440,6 +464,30 @@ static void query_ffp_group(qgl_context *ctx, qgl__state *st)
     st->ffp_ok = query_ffp(ctx, st);
 }
 
+/* Only the bindings (or images) changed: the enabled units' textures' facts into the key
+ * kept from the last full query; 0 when that must run (it failed, or a depth texture is
+ * bound now). */
+static int query_bound(qgl_context *ctx, qgl__state *st)
+{
+    qgl__key *k = &st->ffp;
+    int ok = st->ffp_ok, switched = 0;
+    for (int u = 0; u < k->nunits && ok; u++) {
+        int t = k->unit[u].target ? target_index(k->unit[u].target) : -1;
+        if (t < 0)
+            continue;
+        if (GL_TEXTURE0 + (GLint)u != st->active_texture)
+            ctx->gl.ActiveTexture(GL_TEXTURE0 + (GLenum)u), switched = 1;
+        const qgl__texfacts *f = texture_facts(ctx, t);
+        ok = f->ok;
+        if (k->unit[u].env != QGL__E_COMBINE)
+            k->unit[u].format = f->format;
+        memcpy(st->texsize[u], f->size, sizeof f->size);
+    }
+    if (switched)
+        ctx->gl.ActiveTexture((GLenum)st->active_texture);
+    return ok;
+}
+
 /* Matrices (texture matrices of the units the key enables) and the viewport. */
 static void query_xform(qgl_context *ctx, qgl__state *st)
 {
@@ -517,7 +565,9 @@ void qgl__query_state(qgl_context *ctx, qgl__state *st)
         need |= QGL__D_XFORM; /* texture matrices of newly enabled units */
     if (need & QGL__D_RASTER)
         query_raster(ctx, c);
-    if (need & QGL__D_FFP)
+    if (need & QGL__D_TEXIMAGE)
+        memset(ctx->tex_facts, 0, sizeof ctx->tex_facts);
+    if ((need & QGL__D_FFP) || ((need & (QGL__D_TEX | QGL__D_TEXIMAGE)) && !query_bound(ctx, c)))
         query_ffp_group(ctx, c);
     if (need & QGL__D_XFORM)
         query_xform(ctx, c);

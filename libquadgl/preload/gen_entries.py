@@ -39,7 +39,7 @@ TYPES = {
 
 # Dirty groups (preload.h's PL_D_*), by name in RULES.
 GROUPS = {'XFORM': 'PL_D_XFORM', 'RASTER': 'PL_D_RASTER', 'FFP': 'PL_D_FFP', 'BIND': 'PL_D_BIND', 'ORDER': 'PL_D_ORDER',
-          'CURRENT': 'PL_D_CURRENT', 'LIST_BASE': 'PL_D_LIST_BASE'}
+          'TEX': 'PL_D_TEX', 'TEXIMAGE': 'PL_D_TEXIMAGE', 'CURRENT': 'PL_D_CURRENT', 'LIST_BASE': 'PL_D_LIST_BASE'}
 
 # What a call may change, first match wins. None: a pure query of state (nothing to mark, no
 # pending quads to draw first); '': no tracked state, but the call may see the picture.
@@ -54,8 +54,10 @@ RULES = [
      r'PopMatrix|Viewport\w*|Matrix(Load|Mult|Rotate|Scale|Translate|Frustum|Ortho|Pop)\w*EXT)$', 'XFORM'),
     (r'^gl(ShadeModel|PolygonMode|RenderMode|UseProgram|UseProgramObjectARB|BindProgramPipeline|'
      r'ProvokingVertex(EXT)?|ClampColor(ARB)?|ActiveTexture(ARB)?)$', 'RASTER'),
-    (r'^gl(Light\w*|ColorMaterial|(Multi)?Tex(Env|Gen)\w*|Fog[fi]v?|Fogx\w*|BindTexture\w*|BindMultiTextureEXT|'
-     r'(Copy|Compressed)?(Multi)?Tex(ture)?Image\w*|Tex(ture)?Storage\w*|DeleteTextures\w*|Tex(ture)?Buffer\w*|'
+    (r'^gl(BindTextures?(EXT)?|BindTextureUnit|BindMultiTextureEXT)$', 'TEX'),
+    (r'^gl((Copy|Compressed)?(Multi)?Tex(ture)?Image\w*|Tex(ture)?Storage\w*|DeleteTextures\w*|Tex(ture)?Buffer\w*|'
+     r'EGLImageTargetTex\w*)$', 'TEXIMAGE'),
+    (r'^gl(Light\w*|ColorMaterial|(Multi)?Tex(Env|Gen)\w*|Fog[fi]v?|Fogx\w*|'
      r'BindProgramARB|ProgramStringARB|Enablei|Disablei|EnableIndexedEXT|DisableIndexedEXT)$', 'FFP'),
     (r'^gl(BindVertexArray(APPLE)?|BindBuffer(ARB)?|ClientActiveTexture(ARB)?|Delete(Buffers|VertexArrays)\w*|'
      r'PopClientAttrib)$', 'BIND'),

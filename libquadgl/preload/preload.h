@@ -155,6 +155,8 @@ enum {
     PL_D_FFP = QGL__D_FFP,
     PL_D_BIND = QGL__D_BIND,
     PL_D_ORDER = QGL__D_ORDER,
+    PL_D_TEX = QGL__D_TEX,
+    PL_D_TEXIMAGE = QGL__D_TEXIMAGE,
     PL_D_CURRENT = 1 << 8,
     PL_D_LIST_BASE = 1 << 9,
     PL_D_STATE = QGL__D_ALL

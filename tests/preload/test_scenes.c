@@ -935,6 +935,52 @@ static void scene_texture(pt_run *r)
     r->min_quads = 1;
 }
 
+/* Textures of different formats swapped by glBindTexture alone, then one re-specified by
+ * glTexImage2D under the same name: under GL_REPLACE an alpha texture keeps the primary
+ * colour and an RGB one replaces it, so a key built for the texture bound before shows. */
+static void scene_texture_formats(pt_run *r)
+{
+    static const GLubyte alpha[4] = {200, 200, 200, 200}, rgb[4][3] = {{30, 200, 90}, {30, 200, 90}, {30, 200, 90}, {30, 200, 90}},
+                         red[4][3] = {{220, 20, 40}, {220, 20, 40}, {220, 20, 40}, {220, 20, 40}};
+    static const float rect[4][4][2] = {
+        {{-0.9f, -0.9f}, {-0.1f, -0.9f}, {-0.1f, -0.1f}, {-0.9f, -0.1f}},
+        {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.9f, -0.1f}, {0.1f, -0.1f}},
+        {{-0.9f, 0.1f}, {-0.1f, 0.1f}, {-0.1f, 0.9f}, {-0.9f, 0.9f}},
+        {{0.1f, 0.1f}, {0.9f, 0.1f}, {0.9f, 0.9f}, {0.1f, 0.9f}},
+    };
+    GLuint names[2];
+    pt_begin_frame();
+    glGenTextures(2, names);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glBindTexture(GL_TEXTURE_2D, names[0]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, 2, 2, 0, GL_ALPHA, GL_UNSIGNED_BYTE, alpha);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, names[1]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, rgb);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glEnable(GL_TEXTURE_2D);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    glColor4f(0.3f, 0.4f, 0.9f, 1);
+    for (int q = 0; q < 4; q++) {
+        if (q == 2) { /* the alpha texture's name gets an RGB image */
+            glBindTexture(GL_TEXTURE_2D, names[0]);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, red);
+        } else {
+            glBindTexture(GL_TEXTURE_2D, names[q == 1 || q == 3]);
+        }
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++) {
+            glTexCoord2f(i == 1 || i == 2 ? 1.0f : 0.0f, i >= 2 ? 1.0f : 0.0f);
+            glVertex2fv(rect[q][i]);
+        }
+        glEnd();
+    }
+    glDisable(GL_TEXTURE_2D);
+    glDeleteTextures(2, names);
+    r->native_equal = 1;
+    r->min_quads = 4;
+}
+
 /* glEvalMesh2(GL_FILL) of a bilinear patch (order 2 x 2) with a colour map: its quads are
  * the grid cells, each non-affine in colour, so they come out smooth. */
 static void scene_eval(pt_run *r)
@@ -1082,6 +1128,7 @@ static const pt_scene scenes[] = {
     {"polygon_line", scene_polygon_line},
     {"lighting", scene_lighting},
     {"texture", scene_texture},
+    {"texture_formats", scene_texture_formats},
     {"eval", scene_eval},
     {"errors", scene_errors},
     {"big", scene_big},
