@@ -663,8 +663,17 @@ const char qgl__glsl_patch[] =
     "    vec2 g = vec2(sx.x - sx.y + sx.z - sx.w, sy.x - sy.y + sy.z - sy.w);\n"
     "    float k2 = qgl_cross(e3, g), k1 = qgl_cross(s0, g) + qgl_cross(e3, e1), k0 = qgl_cross(s0, e1);\n"
     "    float q = -0.5 * (k1 + (k1 < 0.0 ? -1.0 : 1.0) * sqrt(max(k1 * k1 - 4.0 * k2 * k0, 0.0)));\n"
-    "    vec2 a = qgl_root(s0, e1, e3, g, k0 / q), b = qgl_root(s0, e1, e3, g, q / k2);\n"
-    "    float oa = qgl_outside(a), ob = qgl_outside(b);\n"
+    "    vec2 a = qgl_root(s0, e1, e3, g, k0 / q);\n"
+    "    float oa = qgl_outside(a), vb = q / k2;\n"
+    /* the other root's v off the square (it runs off to infinity as the patch flattens): its
+     * hit cannot be taken, and the first alone decides (what the full test below gives) */
+    "    if (oa <= 1e-3 && !(vb >= -1e-3 && vb <= 1.001)) {\n"
+    "        vec4 ba = qgl_bilinear(a) * w;\n"
+    "        depth = dot(ba, z) / dot(ba, vec4(1.0));\n"
+    "        return qgl_bilinear(a);\n"
+    "    }\n"
+    "    vec2 b = qgl_root(s0, e1, e3, g, vb);\n"
+    "    float ob = qgl_outside(b);\n"
     "    vec4 ba = qgl_bilinear(a) * w, bb = qgl_bilinear(b) * w;\n"
     /* the nearer of two hits by cross-multiplied depths (the w sums are positive) */
     "    float na = dot(ba, z), da = dot(ba, vec4(1.0)), nb = dot(bb, z), db = dot(bb, vec4(1.0));\n"
