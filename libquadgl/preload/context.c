@@ -198,6 +198,11 @@ qgl_context *pl_ctx_qgl(pl_ctx *x)
     }
     if (PL_UNLIKELY(__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)))
         x->dirty |= PL_D_STATE;
+    unsigned images = pl_share_images(x->share);
+    if (images != x->images_seen) {
+        x->images_seen = images;
+        x->dirty |= PL_D_TEXIMAGE;
+    }
     if (x->qgl && x->dirty) {
         qgl__state_dirty(x->qgl, x->dirty);
         x->dirty = 0;

@@ -78,6 +78,7 @@ struct pl_list {
 struct pl_share {
     pthread_mutex_t lock;
     int refs;
+    unsigned images;   /* texture image changes made in any of its contexts (atomic) */
     pl_list **lists;   /* sorted by name */
     size_t n, cap;
     GLuint next_sub;
@@ -99,6 +100,19 @@ pl_share *pl_share_new(void)
 void pl_share_ref(pl_share *s)
 {
     __atomic_add_fetch(&s->refs, 1, __ATOMIC_ACQ_REL);
+}
+
+/* Texture objects are shared too: an image given in one context (a loader thread's, say)
+ * must reach what every other context's GL path keeps of its textures (QGL__D_TEXIMAGE). */
+void pl_share_images_changed(pl_share *s)
+{
+    if (s)
+        __atomic_add_fetch(&s->images, 1, __ATOMIC_RELEASE);
+}
+
+unsigned pl_share_images(const pl_share *s)
+{
+    return s ? __atomic_load_n(&s->images, __ATOMIC_ACQUIRE) : 0;
 }
 
 /* A mesh's buffer object can be deleted only while a context of its share group is current. */
@@ -722,6 +736,8 @@ static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int dep
         case PL_ITEM_SEGMENT:
             REAL(glCallList)(it->name);
             x->dirty |= it->mask & PL_D_STATE;
+            if (it->mask & PL_D_TEXIMAGE)
+                pl_share_images_changed(x->share);
             if (it->mask & PL_D_CURRENT)
                 x->cur_known = 0;
             if (it->mask & PL_D_LIST_BASE)

@@ -175,6 +175,7 @@ struct pl_ctx {
     int native_begin;        /* inside a glBegin forwarded to the driver */
     int slow;                /* capturing or compiling: calls take the slow path of pl_touch */
     unsigned dirty;          /* PL_D_STATE groups changed since the GL path last drew */
+    unsigned images_seen;    /* pl_share_images when the GL path last drew */
     float cur[QGL__NATTR][4];/* the driver's current attributes as the calls left them */
     unsigned char cur_edge;
     unsigned cur_known;      /* attributes (and QGL__A_EDGE) whose value above is known */
@@ -225,6 +226,8 @@ struct qgl__gl *pl_gl(void);
  * itself would be. */
 void pl_invalid_operation(void);
 void pl_touch_slow(pl_ctx *x, unsigned mask);
+void pl_share_images_changed(pl_share *s);
+unsigned pl_share_images(const pl_share *s);
 
 /* Every call that is not an attribute or a vertex: draws the pending batch, notes what the
  * call changes; returns 1 when the call must not reach the driver (it was made inside a
@@ -242,6 +245,8 @@ static inline int pl_touch(unsigned mask)
         pl_touch_slow(x, mask); /* draws a pending batch in the state it was made in */
     }
     x->dirty |= mask & PL_D_STATE;
+    if (mask & PL_D_TEXIMAGE)
+        pl_share_images_changed(x->share);
     if (mask & PL_D_CURRENT)
         x->cur_known = 0;
     if (mask & PL_D_LIST_BASE)

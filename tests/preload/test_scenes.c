@@ -15,6 +15,7 @@
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
+#include <GL/osmesa.h>
 #include <GL/glext.h>
 
 #include "pt.h"
@@ -981,6 +982,59 @@ static void scene_texture_formats(pt_run *r)
     r->min_quads = 4;
 }
 
+/* Texture objects are shared: a second context of the same share group gives the texture
+ * this context drew with an image of another format, and this context's next quad must show
+ * it (what the library keeps of a texture is per context). */
+static void scene_texture_shared(pt_run *r)
+{
+    static const GLubyte alpha[4] = {200, 200, 200, 200}, red[4][3] = {{220, 20, 40}, {220, 20, 40}, {220, 20, 40}, {220, 20, 40}};
+    static const float rect[2][4][2] = {{{-0.9f, -0.9f}, {0.9f, -0.9f}, {0.9f, -0.1f}, {-0.9f, -0.1f}},
+                                        {{-0.9f, 0.1f}, {0.9f, 0.1f}, {0.9f, 0.9f}, {-0.9f, 0.9f}}};
+    OSMesaContext own = OSMesaGetCurrentContext();
+    GLint w = 0, h = 0, format = 0;
+    void *buffer = NULL;
+    GLuint name;
+    if (!own || !OSMesaGetColorBuffer(own, &w, &h, &format, &buffer)) {
+        snprintf(r->failure, sizeof r->failure, "no current OSMesa context to share with");
+        return;
+    }
+    pt_begin_frame();
+    glGenTextures(1, &name);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, 2, 2, 0, GL_ALPHA, GL_UNSIGNED_BYTE, alpha);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glEnable(GL_TEXTURE_2D);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    glColor4f(0.3f, 0.4f, 0.9f, 1);
+    for (int q = 0; q < 2; q++) {
+        if (q == 1) { /* the other context re-specifies the texture as RGB */
+            static unsigned char other_buffer[4 * 4 * 4];
+            OSMesaContext other = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, own);
+            if (!other || !OSMesaMakeCurrent(other, other_buffer, GL_UNSIGNED_BYTE, 4, 4)) {
+                snprintf(r->failure, sizeof r->failure, "no second OSMesa context");
+                return;
+            }
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+            glBindTexture(GL_TEXTURE_2D, name);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, red);
+            glFinish();
+            OSMesaMakeCurrent(own, buffer, GL_UNSIGNED_BYTE, w, h);
+            OSMesaDestroyContext(other);
+        }
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++) {
+            glTexCoord2f(i == 1 || i == 2 ? 1.0f : 0.0f, i >= 2 ? 1.0f : 0.0f);
+            glVertex2fv(rect[q][i]);
+        }
+        glEnd();
+    }
+    glDisable(GL_TEXTURE_2D);
+    glDeleteTextures(1, &name);
+    r->native_equal = 1;
+    r->min_quads = 2;
+}
+
 /* glEvalMesh2(GL_FILL) of a bilinear patch (order 2 x 2) with a colour map: its quads are
  * the grid cells, each non-affine in colour, so they come out smooth. */
 static void scene_eval(pt_run *r)
@@ -1129,6 +1183,7 @@ static const pt_scene scenes[] = {
     {"lighting", scene_lighting},
     {"texture", scene_texture},
     {"texture_formats", scene_texture_formats},
+    {"texture_shared", scene_texture_shared},
     {"eval", scene_eval},
     {"errors", scene_errors},
     {"big", scene_big},
