@@ -936,45 +936,56 @@ static void scene_texture(pt_run *r)
     r->min_quads = 1;
 }
 
-/* Textures of different formats swapped by glBindTexture alone, then one re-specified by
- * glTexImage2D under the same name: under GL_REPLACE an alpha texture keeps the primary
- * colour and an RGB one replaces it, so a key built for the texture bound before shows. */
-static void scene_texture_formats(pt_run *r)
+/* Under GL_REPLACE an alpha texture keeps the primary colour and an RGB one replaces it: a
+ * key built for a texture of the other format shows. */
+static const GLubyte tex_alpha[4] = {200, 200, 200, 200};
+static const GLubyte tex_green[4][3] = {{30, 200, 90}, {30, 200, 90}, {30, 200, 90}, {30, 200, 90}};
+static const GLubyte tex_red[4][3] = {{220, 20, 40}, {220, 20, 40}, {220, 20, 40}, {220, 20, 40}};
+
+/* A 2 x 2 image (GL_ALPHA or GL_RGB) for the bound texture, filtered nearest. */
+static void tex_image(GLenum format, const void *texels)
 {
-    static const GLubyte alpha[4] = {200, 200, 200, 200}, rgb[4][3] = {{30, 200, 90}, {30, 200, 90}, {30, 200, 90}, {30, 200, 90}},
-                         red[4][3] = {{220, 20, 40}, {220, 20, 40}, {220, 20, 40}, {220, 20, 40}};
-    static const float rect[4][4][2] = {
-        {{-0.9f, -0.9f}, {-0.1f, -0.9f}, {-0.1f, -0.1f}, {-0.9f, -0.1f}},
-        {{0.1f, -0.9f}, {0.9f, -0.9f}, {0.9f, -0.1f}, {0.1f, -0.1f}},
-        {{-0.9f, 0.1f}, {-0.1f, 0.1f}, {-0.1f, 0.9f}, {-0.9f, 0.9f}},
-        {{0.1f, 0.1f}, {0.9f, 0.1f}, {0.9f, 0.9f}, {0.1f, 0.9f}},
-    };
-    GLuint names[2];
-    pt_begin_frame();
-    glGenTextures(2, names);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glBindTexture(GL_TEXTURE_2D, names[0]);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, 2, 2, 0, GL_ALPHA, GL_UNSIGNED_BYTE, alpha);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)format, 2, 2, 0, format, GL_UNSIGNED_BYTE, texels);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glBindTexture(GL_TEXTURE_2D, names[1]);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, rgb);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+}
+
+/* Texturing under GL_REPLACE with a colour the alpha texture keeps. */
+static void tex_replace_on(void)
+{
     glEnable(GL_TEXTURE_2D);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
     glColor4f(0.3f, 0.4f, 0.9f, 1);
+}
+
+/* An axis-aligned rectangle (x0, y0) to (x1, y1) with the whole texture on it. */
+static void tex_rect(float x0, float y0, float x1, float y1)
+{
+    glBegin(GL_QUADS);
+    glTexCoord2f(0, 0), glVertex2f(x0, y0);
+    glTexCoord2f(1, 0), glVertex2f(x1, y0);
+    glTexCoord2f(1, 1), glVertex2f(x1, y1);
+    glTexCoord2f(0, 1), glVertex2f(x0, y1);
+    glEnd();
+}
+
+/* Textures of different formats swapped by glBindTexture alone, then one re-specified by
+ * glTexImage2D under the same name. */
+static void scene_texture_formats(pt_run *r)
+{
+    GLuint names[2];
+    pt_begin_frame();
+    glGenTextures(2, names);
+    glBindTexture(GL_TEXTURE_2D, names[0]);
+    tex_image(GL_ALPHA, tex_alpha);
+    glBindTexture(GL_TEXTURE_2D, names[1]);
+    tex_image(GL_RGB, tex_green);
+    tex_replace_on();
     for (int q = 0; q < 4; q++) {
-        if (q == 2) { /* the alpha texture's name gets an RGB image */
-            glBindTexture(GL_TEXTURE_2D, names[0]);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, red);
-        } else {
-            glBindTexture(GL_TEXTURE_2D, names[q == 1 || q == 3]);
-        }
-        glBegin(GL_QUADS);
-        for (int i = 0; i < 4; i++) {
-            glTexCoord2f(i == 1 || i == 2 ? 1.0f : 0.0f, i >= 2 ? 1.0f : 0.0f);
-            glVertex2fv(rect[q][i]);
-        }
-        glEnd();
+        glBindTexture(GL_TEXTURE_2D, names[q & 1]);
+        if (q == 2) /* the alpha texture's name gets an RGB image */
+            tex_image(GL_RGB, tex_red);
+        tex_rect(q & 1 ? 0.1f : -0.9f, q & 2 ? 0.1f : -0.9f, q & 1 ? 0.9f : -0.1f, q & 2 ? 0.9f : -0.1f);
     }
     glDisable(GL_TEXTURE_2D);
     glDeleteTextures(2, names);
@@ -987,10 +998,8 @@ static void scene_texture_formats(pt_run *r)
  * it (what the library keeps of a texture is per context). */
 static void scene_texture_shared(pt_run *r)
 {
-    static const GLubyte alpha[4] = {200, 200, 200, 200}, red[4][3] = {{220, 20, 40}, {220, 20, 40}, {220, 20, 40}, {220, 20, 40}};
-    static const float rect[2][4][2] = {{{-0.9f, -0.9f}, {0.9f, -0.9f}, {0.9f, -0.1f}, {-0.9f, -0.1f}},
-                                        {{-0.9f, 0.1f}, {0.9f, 0.1f}, {0.9f, 0.9f}, {-0.9f, 0.9f}}};
-    OSMesaContext own = OSMesaGetCurrentContext();
+    static unsigned char other_buffer[4 * 4 * 4];
+    OSMesaContext own = OSMesaGetCurrentContext(), other;
     GLint w = 0, h = 0, format = 0;
     void *buffer = NULL;
     GLuint name;
@@ -1000,35 +1009,21 @@ static void scene_texture_shared(pt_run *r)
     }
     pt_begin_frame();
     glGenTextures(1, &name);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glBindTexture(GL_TEXTURE_2D, name);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, 2, 2, 0, GL_ALPHA, GL_UNSIGNED_BYTE, alpha);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glEnable(GL_TEXTURE_2D);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-    glColor4f(0.3f, 0.4f, 0.9f, 1);
-    for (int q = 0; q < 2; q++) {
-        if (q == 1) { /* the other context re-specifies the texture as RGB */
-            static unsigned char other_buffer[4 * 4 * 4];
-            OSMesaContext other = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, own);
-            if (!other || !OSMesaMakeCurrent(other, other_buffer, GL_UNSIGNED_BYTE, 4, 4)) {
-                snprintf(r->failure, sizeof r->failure, "no second OSMesa context");
-                return;
-            }
-            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-            glBindTexture(GL_TEXTURE_2D, name);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, red);
-            glFinish();
-            OSMesaMakeCurrent(own, buffer, GL_UNSIGNED_BYTE, w, h);
-            OSMesaDestroyContext(other);
-        }
-        glBegin(GL_QUADS);
-        for (int i = 0; i < 4; i++) {
-            glTexCoord2f(i == 1 || i == 2 ? 1.0f : 0.0f, i >= 2 ? 1.0f : 0.0f);
-            glVertex2fv(rect[q][i]);
-        }
-        glEnd();
+    tex_image(GL_ALPHA, tex_alpha);
+    tex_replace_on();
+    tex_rect(-0.9f, -0.9f, 0.9f, -0.1f);
+    other = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, own);
+    if (!other || !OSMesaMakeCurrent(other, other_buffer, GL_UNSIGNED_BYTE, 4, 4)) {
+        snprintf(r->failure, sizeof r->failure, "no second OSMesa context");
+        return;
     }
+    glBindTexture(GL_TEXTURE_2D, name);
+    tex_image(GL_RGB, tex_red);
+    glFinish();
+    OSMesaMakeCurrent(own, buffer, GL_UNSIGNED_BYTE, w, h);
+    OSMesaDestroyContext(other);
+    tex_rect(-0.9f, 0.1f, 0.9f, 0.9f);
     glDisable(GL_TEXTURE_2D);
     glDeleteTextures(1, &name);
     r->native_equal = 1;
