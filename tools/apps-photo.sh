@@ -141,8 +141,8 @@ while read -r name args; do
         off|replay) ok=$([ "$3" = 0 ] && echo 1 || echo 0); cell="$3/$2" ;;
         split) ok=$([ "$1" = 0 ] && echo 1 || echo 0); cell="$1/$2" ;;
         *) ok=$([ "$4" = 0 ] && echo 1 || echo 0); cell="$1 ($4 outside)/$2"
-           bound=$(known "$name" "$m")
-           if [ "$ok" = 0 ] && [ -n "$bound" ] && [ "$4" -le "$bound" ]; then
+           bound=$([ "$ok" = 1 ] || known "$name" "$m")
+           if [ -n "$bound" ] && [ "$4" -le "$bound" ]; then
                ok=1 cell="$cell known" knowns="$knowns $name:$m"
            fi ;;
         esac

@@ -735,13 +735,7 @@ static void pl_items_exec(pl_ctx *x, pl_list *l, size_t from, size_t to, int dep
         switch (it->kind) {
         case PL_ITEM_SEGMENT:
             REAL(glCallList)(it->name);
-            x->dirty |= it->mask & PL_D_STATE;
-            if (it->mask & PL_D_TEXIMAGE)
-                pl_share_images_changed(x->share);
-            if (it->mask & PL_D_CURRENT)
-                x->cur_known = 0;
-            if (it->mask & PL_D_LIST_BASE)
-                x->list_base_known = 0;
+            pl_mark(x, it->mask);
             if (it->begins)
                 x->native_begin = it->begins == 1;
             break;

@@ -229,6 +229,18 @@ void pl_touch_slow(pl_ctx *x, unsigned mask);
 void pl_share_images_changed(pl_share *s);
 unsigned pl_share_images(const pl_share *s);
 
+/* Notes what a call (or a list segment of calls) changed, for the GL path's next draw. */
+static inline void pl_mark(pl_ctx *x, unsigned mask)
+{
+    x->dirty |= mask & PL_D_STATE;
+    if (mask & PL_D_TEXIMAGE)
+        pl_share_images_changed(x->share);
+    if (mask & PL_D_CURRENT)
+        x->cur_known = 0;
+    if (mask & PL_D_LIST_BASE)
+        x->list_base_known = 0;
+}
+
 /* Every call that is not an attribute or a vertex: draws the pending batch, notes what the
  * call changes; returns 1 when the call must not reach the driver (it was made inside a
  * captured glBegin/glEnd, where GL forbids it: the driver's error has been raised instead). */
@@ -244,13 +256,7 @@ static inline int pl_touch(unsigned mask)
         }
         pl_touch_slow(x, mask); /* draws a pending batch in the state it was made in */
     }
-    x->dirty |= mask & PL_D_STATE;
-    if (mask & PL_D_TEXIMAGE)
-        pl_share_images_changed(x->share);
-    if (mask & PL_D_CURRENT)
-        x->cur_known = 0;
-    if (mask & PL_D_LIST_BASE)
-        x->list_base_known = 0;
+    pl_mark(x, mask);
     return 0;
 }
 
