@@ -21,6 +21,12 @@ apps_init() {
         [ -f "$f" ] || { echo "apps: no $f (build first: tools/build.sh)" >&2; return 1; }
     done
     apps_tmp=$(mktemp -d "${TMPDIR:-/tmp}/quadgl-apps.XXXXXX")
+    # The hacks that show images run xscreensaver-getimage from PATH, as the xscreensaver
+    # daemon that starts them arranges; with a home of their own its settings are fixed:
+    # colour bars, never a grab of the screen (which would hold the hack's own frames).
+    mkdir "$apps_tmp/home"
+    printf 'grabDesktopImages: False\nchooseRandomImages: False\n' >"$apps_tmp/home/.xscreensaver"
+    apps_env="HOME=$apps_tmp/home PATH=${XSCREENSAVER_HACKS:-/usr/libexec/xscreensaver}:$PATH"
     trap apps_cleanup EXIT
     trap 'exit 130' INT TERM
 }
@@ -97,11 +103,11 @@ apps_run() {
     ar_cmd=$(apps_command "$@")
     if [ "$ar_method" = native ]; then
         # shellcheck disable=SC2086
-        env -u QUADGL_METHOD -u QUADGL_STATS LD_PRELOAD="$apps_shim" vblank_mode=0 \
+        env -u QUADGL_METHOD -u QUADGL_STATS $apps_env LD_PRELOAD="$apps_shim" vblank_mode=0 \
             timeout -k 5 "$ar_limit" $ar_cmd </dev/null >/dev/null 2>"$ar_err"
     else
         # shellcheck disable=SC2086
-        env LD_PRELOAD="$apps_lib $apps_shim" QUADGL_METHOD="$ar_method" QUADGL_STATS=1 vblank_mode=0 \
+        env $apps_env LD_PRELOAD="$apps_lib $apps_shim" QUADGL_METHOD="$ar_method" QUADGL_STATS=1 vblank_mode=0 \
             timeout -k 5 "$ar_limit" $ar_cmd </dev/null >/dev/null 2>"$ar_err"
     fi
 }

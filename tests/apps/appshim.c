@@ -21,6 +21,10 @@
  *                       (the REALTIME and MONOTONIC clocks and their variants); getpid returns
  *                       a constant. The xscreensaver hacks seed their random numbers from
  *                       the time and the pid, so a frozen run draws the same frames every time.
+ *                       Children the program forks (xscreensaver-getimage, which loads an
+ *                       image and answers through a pipe) are waited for, up to 20 s, after
+ *                       the swap that started them, so an image arrives at the same frame
+ *                       every run, not when the machine's load lets it.
  *   APPSHIM_FREEZE=realtime   the same for the time of day only (gettimeofday, time,
  *                       CLOCK_REALTIME) and getpid: the hacks draw the same frames, while the
  *                       driver and quadgl, which time themselves on CLOCK_MONOTONIC, see real
@@ -39,6 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/time.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -193,6 +198,43 @@ SHIM_EXPORT pid_t getpid(void)
     if (!real)
         real = (getpid_fn)dlsym(RTLD_NEXT, "getpid");
     return real();
+}
+
+/* ---- children ---------------------------------------------------------------------------------- */
+
+static pid_t children[16];
+static int n_children;
+
+typedef pid_t (*fork_fn)(void);
+
+SHIM_EXPORT pid_t fork(void)
+{
+    static fork_fn real;
+    pid_t pid;
+    if (!real)
+        real = (fork_fn)dlsym(RTLD_NEXT, "fork");
+    pid = real();
+    if (pid > 0 && frozen(0) && n_children < (int)(sizeof children / sizeof *children))
+        children[n_children++] = pid;
+    return pid;
+}
+
+/* Waits, without reaping (the program reaps its own), until each child forked since the last
+ * swap has exited or 20 s have passed. */
+static void wait_children(void)
+{
+    double end = real_seconds(CLOCK_MONOTONIC) + 20;
+    struct timespec ms = {0, 1000000};
+    for (int i = 0; i < n_children; i++) {
+        for (;;) {
+            siginfo_t si = {0};
+            if (waitid(P_PID, (id_t)children[i], &si, WEXITED | WNOWAIT | WNOHANG) != 0 ||
+                si.si_pid == children[i] || real_seconds(CLOCK_MONOTONIC) > end)
+                break;
+            nanosleep(&ms, NULL);
+        }
+    }
+    n_children = 0;
 }
 
 /* ---- GL, found at run time (the program may reach libGL through dlopen) ------------------------ */
@@ -467,6 +509,8 @@ static void after_swap(int n)
     static double start, cpu_start;
     double now;
     FILE *f;
+    if (n_children)
+        wait_children();
     if (cfg.seconds <= 0)
         return;
     now = real_seconds(CLOCK_MONOTONIC);
