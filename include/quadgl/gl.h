@@ -98,7 +98,8 @@ QGL_API void qgl_gl_make_current(qgl_context *ctx); /* per thread */
 QGL_API qgl_context *qgl_gl_current(void);
 QGL_API void qgl_gl_set_method(qgl_context *ctx, qgl_method method);
 QGL_API qgl_method qgl_gl_get_method(const qgl_context *ctx);
-/* The scale of qgl_gl_desc.split_error, changed for later draws. */
+/* The scale of qgl_gl_desc.split_error, changed for later draws (the planner forgets how often
+ * lit quads passed the old one). */
 QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale);
 /* The shader path the context found: 0 none (CPU fallback only), 120 (GLSL 1.20 on GL 2.x or a
  * context capped by max_glsl: the cover computed on the CPU, corners sent per vertex), 150

@@ -20,6 +20,7 @@
  * function and 250 ms for the shader path's program here, which the application's first
  * draws pay for its own state as well); its time is kept as warm_ms. QUADGL_COSTS=mq,mf,sf,gt
  * (nanoseconds) replaces the measurement (validated the same way). */
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -360,6 +361,14 @@ int qgl__grid_cheaper(const qgl_context *ctx, double area_px, int g)
     if (!c || !c->valid || !grid)
         return 0;
     return c->grid_tri * grid->ntris + c->split_px * area_px < c->mvc_quad + c->mvc_px * area_px;
+}
+
+double qgl__split_saving(const qgl_context *ctx, double area_px)
+{
+    const struct qgl__costs *c = ctx->costs;
+    if (!c || !c->valid)
+        return INFINITY;
+    return (c->mvc_px - c->split_px) * area_px;
 }
 
 QGL_API void qgl_gl_costs(const qgl_context *ctx, qgl_gl_costs_t *out)

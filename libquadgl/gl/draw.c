@@ -147,8 +147,10 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
             p[c][k] = q[k] / q[3];
     }
     *planar = qgl__planar(p);
-    if (!*planar || st->nonaffine)
+    if (!*planar)
         return 0;
+    if (st->nonaffine) /* lit corners: judged by their colours, which light.c computes */
+        return invisible && st->lit_cpu && split_invisible(ctx, st, v, idx, clip);
     int n = gather_attribs(st, v, idx, attr);
     if (memcmp(attr, attr + QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
         memcmp(attr, attr + 2 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
@@ -321,14 +323,22 @@ static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
 }
 
 /* Whether the split is exact, and whether the quad is planar: from the cached facts of a
- * retained batch, else tested now. */
+ * retained batch, else tested now. Under per-vertex materials the split lights a quad with
+ * one material, so its corners must have one. */
 static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                       const double *clip[4], int invisible, const qgl__facts *facts, size_t q, int *planar)
 {
     if (facts) {
         *planar = facts->quad[q] & QGL__F_PLANAR;
+        if (st->pv_material && !qgl__same_material(v, idx))
+            return 0;
         return exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
                (invisible && *planar && split_invisible(ctx, st, v, idx, clip));
+    }
+    if (st->pv_material && !qgl__same_material(v, idx)) {
+        double p[4][3];
+        *planar = object_corners(v, idx, p) && qgl__planar(p);
+        return 0;
     }
     int exact = split_is_exact(ctx, st, v, idx, clip, invisible, planar);
     if (!exact && *planar && st->nonaffine && st->lit_by_inputs) {
@@ -552,18 +562,39 @@ static double texel_residual(const qgl__state *st, const qgl__verts *v, const si
 /* The largest gain within the budgets above scaled by the context's split_error, for colours
  * (primary, secondary under colour sum, and the fog factor from the fog coordinate, whose
  * errors add in the output colour) and each unit's texture coordinates: the budgets over
- * the residuals along n. Only for states whose per-vertex work is affine in the attributes
- * and that the shader path models; COMBINE arithmetic (scales, dot products) may magnify a
- * difference, so it is not judged (0). */
+ * the residuals along n. Only for states that the shader path models and whose per-vertex
+ * work is affine in the attributes or is smooth lighting: both paths then interpolate the
+ * corners' lit colours, which light.c computes (the primary and the separate specular colour
+ * add up; under two-sided lighting the worse face counts). COMBINE arithmetic (scales, dot
+ * products) may magnify a difference, so it is not judged (0). */
 double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                        const double n[4])
 {
     double scale = ctx->split_error > 0 ? ctx->split_error : 1.0;
-    if (ctx->split_error < 0 || !st->modelled || st->nonaffine || st->pv_material)
+    if (ctx->split_error < 0 || !st->modelled || ((st->nonaffine || st->pv_material) && !st->lit_cpu))
         return 0;
     int smooth = st->shade_model != GL_FLAT;
     double colour = 0;
-    if ((v->mask & QGL__A_COLOR) && smooth)
+    if (st->lit_cpu) {
+        float lit[2][4 * QGL__LIT_FLOATS];
+        int faces = qgl__lit_colours(ctx, st, v, idx, lit);
+        if (!faces)
+            return 0;
+        for (int f = 0; f < faces; f++) { /* the primary and the separate specular colour add up */
+            double pri = 0, sec = 0;
+            for (int k = 0; k < QGL__LIT_FLOATS; k++) {
+                double c[4];
+                for (int i = 0; i < 4; i++)
+                    c[i] = lit[f][QGL__LIT_FLOATS * i + k];
+                double r = range_residual(n, c);
+                if (k < 4)
+                    pri = fmax(pri, r);
+                else
+                    sec = fmax(sec, r);
+            }
+            colour = fmax(colour, pri + sec);
+        }
+    } else if ((v->mask & QGL__A_COLOR) && smooth)
         colour += residual(n, v->col, 4, idx, 1);
     if ((v->mask & QGL__A_COLOR2) && smooth && (st->ffp.flags & QGL__KF_COLOR_SUM))
         colour += residual(n, v->col2, 3, idx, 1);
@@ -585,6 +616,20 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
     return limit;
 }
 
+/* What judging a lit quad costs (lighting its corners, the gain's samples): about 500 ns here
+ * (perf on peepers, whose quads mostly fail it). */
+#define LIT_TEST_NS 500.0
+
+/* Whether to leave a lit quad to the shader path untested: where the split's expected saving
+ * on it (the calibrated costs of its pixels, times the rate at which the quads judged lately
+ * passed) is below what judging it costs. One in 16 is judged all the same, so that the rate
+ * follows the scene. The picture is right either way. */
+static int skip_lit_test(qgl_context *ctx, double area_px)
+{
+    double rate = (ctx->lit_passed + 1.0) / (ctx->lit_tested + 2.0);
+    return rate * qgl__split_saving(ctx, area_px) < LIT_TEST_NS && (ctx->lit_skipped++ & 15) != 0;
+}
+
 /* Whether the split of a planar quad (every w > 0) shows the same pixels as the mean value
  * interpolation AUTO's smooth path draws (weighed in the quad's plane): the gain its samples
  * find within qgl__gain_limit along the corners' clip dependency. */
@@ -592,10 +637,19 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
                            const double *clip[4])
 {
     double n[4], p[4][3];
+    int lit = st->lit_cpu && (st->nonaffine || st->pv_material);
+    if (lit && skip_lit_test(ctx, bbox_area_px(clip, st->viewport)))
+        return 0;
     if (!dependency(clip, n) || !object_corners(v, idx, p))
         return 0;
     double limit = qgl__gain_limit(ctx, st, v, idx, n);
-    return limit > 0 && gain_within(clip, st->viewport, n, limit, (const double(*)[3])p);
+    int invisible = limit > 0 && gain_within(clip, st->viewport, n, limit, (const double(*)[3])p);
+    if (lit) {
+        ctx->lit_tested++, ctx->lit_passed += (unsigned)invisible;
+        if (ctx->lit_tested >= 512) /* a recent rate: older quads count half at each halving */
+            ctx->lit_tested /= 2, ctx->lit_passed /= 2;
+    }
+    return invisible;
 }
 
 /* Whether the driver may clip at this clip coordinate: outside, or so close inside that the
@@ -660,8 +714,10 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
 
 QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale)
 {
-    if (ctx)
-        ctx->split_error = scale;
+    if (!ctx)
+        return;
+    ctx->split_error = scale;
+    ctx->lit_tested = ctx->lit_passed = ctx->lit_skipped = 0; /* the rate was for the old budget */
 }
 
 /* ---- drawing through the driver ---------------------------------------------------------------- */
@@ -1341,8 +1397,8 @@ static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl
     return 1;
 }
 
-int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
-                    const qgl__change *chg, size_t nchg)
+static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
+                      const qgl__change *chg, size_t nchg)
 {
     size_t nq = qgl__nquads(topo, v->n);
     if (!nq) {
@@ -1361,7 +1417,7 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     }
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
         st.ffp.flags |= QGL__KF_MATERIAL;
-        st.pv_material = st.nonaffine = 1;
+        st.pv_material = 1; /* a quad splits only with one material at its corners */
         st.lit_by_inputs = 0;
     }
     if (!nchg && draw_natively(ctx, &st, facts, nq))
@@ -1433,4 +1489,14 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     else if (bound != st.program)
         ctx->gl.UseProgram((GLuint)st.program);
     return (int)nq;
+}
+
+int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
+                    const qgl__change *chg, size_t nchg)
+{
+    ctx->lightvals.current_valid = 0;
+    int n = draw_batch(ctx, v, topo, facts, flags, chg, nchg);
+    if (nchg) /* the batch's glMaterial calls have reached the driver (or will, replayed) */
+        ctx->lightvals.values_valid = 0;
+    return n;
 }

@@ -400,7 +400,8 @@ enum {
                                writes, the draw framebuffer's depth bits, blending, stencil, logic op */
     QGL__D_TEX = 1 << 5,      /* the textures bound to the units (their formats and sizes) */
     QGL__D_TEXIMAGE = 1 << 6, /* some texture's level 0 may have changed format or size */
-    QGL__D_ALL = (1 << 7) - 1
+    QGL__D_LIGHT = 1 << 7,    /* material values (light values change the FFP group) */
+    QGL__D_ALL = (1 << 8) - 1
 };
 
 /* What the key and the planner need of a texture's level 0, kept by name (state.c): asked of
@@ -426,6 +427,7 @@ typedef struct qgl__state {
                                  program or pipeline, ARB programs): the driver draws its quads
                                  as they are, since no path of ours runs its programs */
     double mvp[16];           /* projection * modelview, column-major */
+    double modelview[16];
     double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
     int tex_replace;          /* env mode REPLACE (else MODULATE) */
@@ -443,6 +445,8 @@ typedef struct qgl__state {
                                  stencil or logic op): a batch may be drawn grouped by path */
     int pv_material;          /* lit quads with per-vertex materials: only the shaders draw them
                                  right (the driver's split sees the last material only) */
+    int lit_cpu;              /* smooth fixed-function lighting alone makes the per-vertex work
+                                 non-affine: light.c computes the corners' colours */
     int lit_by_inputs;        /* the per-vertex work is a function of the captured attributes
                                  alone (directional lights, infinite viewer, no texgen reading
                                  the eye position): where corners with equal attributes group
@@ -453,6 +457,33 @@ typedef struct qgl__state {
     double fog_slope;         /* bound on |d fog factor / d fog coordinate| (fog from the
                                  coordinate; 0 otherwise) */
 } qgl__state;
+
+/* light.c: light and material values as the driver holds them, read when the planner first
+ * needs them after a change, and the normal matrix. */
+typedef struct qgl__lightval {
+    GLfloat amb[4], dif[4], spe[4], pos[4], dir[4], exponent, cos_cutoff, att[3];
+} qgl__lightval;
+typedef struct qgl__lightvals {
+    int values_valid, normal_valid, normal_ok, current_valid;
+    GLfloat cur_normal[4], cur_colour[4]; /* the driver's current values, read once per draw */
+    qgl__lightval light[8];
+    GLfloat model_ambient[4];
+    GLfloat mat[2][4][4];     /* front, back: emission, ambient, diffuse, specular */
+    GLfloat shininess[2];
+    double nmat[3][3], rescale;
+} qgl__lightvals;
+
+/* Whether corners idx of v (per-vertex materials) have one material: the split, which draws
+ * a quad with its first corner's, then lights it as the shader path does. */
+int qgl__same_material(const qgl__verts *v, const size_t idx[4]);
+
+/* Per corner: primary RGBA, secondary RGB. */
+enum { QGL__LIT_FLOATS = 7 };
+
+/* The lit colours of corners idx of v, per face (front, then back under two-sided lighting):
+ * the number of faces, 0 where they cannot be computed (a singular model-view). */
+int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                     float out[2][4 * QGL__LIT_FLOATS]);
 
 /* ---- programs ------------------------------------------------------------------------------ */
 
@@ -557,6 +588,8 @@ struct qgl_context {
     GLsizei *multi_count;
     size_t multi_cap, multi_cap2;
     qgl__state state;         /* the state of the last draw (state.c) */
+    qgl__lightvals lightvals; /* light.c's copy of the light values, for the planner */
+    unsigned lit_tested, lit_passed, lit_skipped; /* lit quads judged lately (split_invisible) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
@@ -781,6 +814,11 @@ void qgl__costs_given(qgl_context *ctx);
  * level changed (the state must be read again). */
 int qgl__ready(qgl_context *ctx);
 int qgl__grid_cheaper(const qgl_context *ctx, double area_px, int g);
+/* Nanoseconds the split saves against the shader path in the pixels of a quad of area_px
+ * (INFINITY when the costs are not known). The per-quad part is not counted: in real programs
+ * it is spent beside the application's thread, and splitting lit quads of a few pixels saved
+ * nothing measurable (engine, peepers in tools/apps-bench.sh). */
+double qgl__split_saving(const qgl_context *ctx, double area_px);
 
 /* Per-thread current context (read directly on the immediate-mode hot path). */
 extern __attribute__((tls_model("initial-exec"))) _Thread_local qgl_context *qgl__tls_current;

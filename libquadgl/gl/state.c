@@ -492,11 +492,11 @@ static int query_bound(qgl_context *ctx, qgl__state *st)
 static void query_xform(qgl_context *ctx, qgl__state *st)
 {
     struct qgl__gl *gl = &ctx->gl;
-    double mv[16], pr[16];
+    double pr[16];
     gl->GetIntegerv(GL_VIEWPORT, st->viewport);
-    gl->GetDoublev(GL_MODELVIEW_MATRIX, mv);
+    gl->GetDoublev(GL_MODELVIEW_MATRIX, st->modelview);
     gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
-    mat_mul(pr, mv, st->mvp);
+    mat_mul(pr, st->modelview, st->mvp);
     int switched = 0;
     for (int u = 0; u < st->ffp.nunits; u++) {
         if (!st->ffp.unit[u].target)
@@ -534,6 +534,8 @@ static void derive(qgl_context *ctx, qgl__state *st)
                    (ctx->shader_level == 150 || st->simple);
     st->nonaffine = st->own_pipeline || !st->ffp_ok || nonaffine(st); /* unknown work: assume the worst */
     st->lit_by_inputs = !st->own_pipeline && st->ffp_ok && lit_by_inputs(st);
+    st->lit_cpu = !st->own_pipeline && st->ffp_ok && (st->ffp.flags & QGL__KF_LIGHTING) && st->shade_model != GL_FLAT &&
+                  !normal_texgen(&st->ffp);
     st->pv_material = 0;
 }
 
@@ -548,19 +550,19 @@ void qgl__state_dirty(qgl_context *ctx, unsigned groups)
     ctx->state_valid &= ~groups;
 }
 
+/* The state now, in ctx->state: read in full, or (an owner that marks changes) only the
+ * groups changed since the last read; the rest is the copy kept from then. The preload
+ * library asks for it at every primitive, so an unchanged state costs one test. */
 const qgl__state *qgl__state_now(qgl_context *ctx)
-{
-    qgl__state st;
-    qgl__query_state(ctx, &st);
-    return &ctx->state;
-}
-
-/* The state of this draw into st: read in full, or (an owner that marks changes) only the
- * groups changed since the last draw; the rest is the copy kept from then. */
-void qgl__query_state(qgl_context *ctx, qgl__state *st)
 {
     qgl__state *c = &ctx->state;
     unsigned need = ctx->state_tracked ? ~ctx->state_valid & QGL__D_ALL : QGL__D_ALL;
+    if (!need)
+        return c;
+    if (need & (QGL__D_FFP | QGL__D_LIGHT))
+        ctx->lightvals.values_valid = 0;
+    if (need & QGL__D_XFORM)
+        ctx->lightvals.normal_valid = 0;
     if (need & QGL__D_FFP)
         need |= QGL__D_XFORM; /* texture matrices of newly enabled units */
     if (need & QGL__D_RASTER)
@@ -575,8 +577,13 @@ void qgl__query_state(qgl_context *ctx, qgl__state *st)
         query_bind(ctx, c);
     if (need & QGL__D_ORDER)
         query_order(ctx, c);
-    if (need)
-        derive(ctx, c);
+    derive(ctx, c);
     ctx->state_valid = QGL__D_ALL;
-    *st = *c;
+    return c;
+}
+
+/* The state of this draw, into a copy the draw may adjust. */
+void qgl__query_state(qgl_context *ctx, qgl__state *st)
+{
+    *st = *qgl__state_now(ctx);
 }

@@ -301,14 +301,19 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     float v[4] = {0, 0, 0, 0};
     int n = pl_material_count(pname);
     if (!x->capturing) {
-        if (x->compiling)
+        if (x->compiling) {
             pl_list_state(x);
+            x->seg_dirty |= PL_D_LIGHT;
+        }
         if (x->batch.v.n && (x->compiling || x->native_begin || !pl_material_inert(x)))
             pl_batch_flush(x);
+        pl_mark(x, PL_D_LIGHT); /* the planner lights corners with the driver's materials */
         return 0;
     }
-    if (!x->compiling && pl_material_inert(x))
+    if (!x->compiling && pl_material_inert(x)) {
+        pl_mark(x, PL_D_LIGHT);
         return 0; /* it shows in no vertex: the driver takes it now, in its order among materials */
+    }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
     for (int i = 0; i < n && i < given; i++)

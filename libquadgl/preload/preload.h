@@ -157,6 +157,7 @@ enum {
     PL_D_ORDER = QGL__D_ORDER,
     PL_D_TEX = QGL__D_TEX,
     PL_D_TEXIMAGE = QGL__D_TEXIMAGE,
+    PL_D_LIGHT = QGL__D_LIGHT,
     PL_D_CURRENT = 1 << 8,
     PL_D_LIST_BASE = 1 << 9,
     PL_D_STATE = QGL__D_ALL

@@ -11,7 +11,16 @@
  * difference is visible (vertex colours in a checker; texture coordinates with a bilinear
  * term 20 times larger) every quad must take the shader path; so must Bailey's large R-B-G-R
  * quad; and split_error < 0 turns the rule off.
- * The retained path (cached facts) plans the same. */
+ * Lit quads (smooth lighting: the colours come from the driver's lighting of each corner,
+ * which the planner redoes on the CPU) are held to the same: normals that bend gently over
+ * the grid under a directional and a positional light with specular highlights, one-sided and
+ * two-sided, split (more than half) within 1/255 of MVC_PLANE, also after a run of quads that
+ * failed (the planner then judges only some); normals that alternate from vertex to vertex
+ * never split; with the budget 1000 times larger they do and the pictures part.
+ * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
+ * the planner judges every lit quad rather than leave some untested where this machine's
+ * calibration says judging would not pay. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +29,7 @@
 
 enum { W = 256, H = 256, N = 16, NV = 4 * N * N };
 
-static float pos[NV][3], col[NV][4], tex[NV][2];
+static float pos[NV][3], col[NV][4], tex[NV][2], nrm[NV][3];
 
 /* Corner attributes at (x, y) of the plane z = 0, [-1, 1]^2; k scales the bilinear term (of
  * blue: 0.5 + k x y); k_col < 0 makes blue a checker of the vertices instead (0 or 1). */
@@ -41,14 +50,63 @@ static void grid(double k_col, double k_tex)
             }
 }
 
+/* Normals of a bump over the grid, n ~ (-k x, -k y, 1); k < 0: a vertex checker of normals
+ * tilted by 0.8 the one way or the other. */
+static void normals(double k)
+{
+    for (int i = 0; i < NV; i++) {
+        double x = pos[i][0], y = pos[i][1], n[3] = {-k * x, -k * y, 1};
+        if (k < 0) {
+            int odd = (int)lround((x + 1) * N / 2 + (y + 1) * N / 2) & 1;
+            n[0] = odd ? 0.8 : -0.8, n[1] = 0.3;
+        }
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int c = 0; c < 3; c++)
+            nrm[i][c] = (float)(n[c] / l);
+    }
+}
+
 static qgl_quad_batch batch(int textured)
 {
     qgl_quad_batch b = {.topology = QGL_QUADS, .count = NV};
     b.position = (qgl_attrib){pos, 3, 0, 0};
     b.color = (qgl_attrib){col, 4, 0, 0};
+    b.normal = (qgl_attrib){nrm, 3, 0, 0};
     if (textured)
         b.texcoord[0] = (qgl_attrib){tex, 2, 0, 0};
     return b;
+}
+
+/* A white directional light from above-left and a warm positional one near the plane with a
+ * tight specular highlight; a grey-blue material. */
+static void lights(int on, int two_sided)
+{
+    if (!on) {
+        glDisable(GL_LIGHTING);
+        return;
+    }
+    static const float dir[4] = {-0.3f, 0.5f, 1, 0}, posl[4] = {0.6f, -0.4f, 0.8f, 1};
+    static const float white[4] = {0.8f, 0.8f, 0.8f, 1}, warm[4] = {0.9f, 0.6f, 0.3f, 1};
+    static const float amb[4] = {0.2f, 0.25f, 0.3f, 1}, dif[4] = {0.5f, 0.6f, 0.8f, 1}, spe[4] = {0.6f, 0.6f, 0.6f, 1};
+    glMatrixMode(GL_MODELVIEW);
+    glPushMatrix();
+    glLoadIdentity(); /* lights in eye space near the camera's view of the plane */
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glLightfv(GL_LIGHT0, GL_SPECULAR, white);
+    glPopMatrix();
+    glLightfv(GL_LIGHT1, GL_POSITION, posl);
+    glLightfv(GL_LIGHT1, GL_DIFFUSE, warm);
+    glLightfv(GL_LIGHT1, GL_SPECULAR, warm);
+    glLightf(GL_LIGHT1, GL_LINEAR_ATTENUATION, 0.3f);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, amb);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, dif);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, spe);
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 24);
+    glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, two_sided);
+    glEnable(GL_LIGHT0);
+    glEnable(GL_LIGHT1);
+    glEnable(GL_LIGHTING);
 }
 
 static void view(void)
@@ -132,9 +190,9 @@ static int compare(th_ctx *t, const char *name, int textured, int tol, int allow
     return (int)sa.split;
 }
 
-/* The comparison can fail: with the budget 1000 times larger the checker grid splits and its
- * picture differs from MVC_PLANE's by many levels. */
-static void teeth(th_ctx *t)
+/* The comparison can fail: with the budget 1000 times larger the checker grid (colours, or
+ * normals when lit) splits and its picture differs from MVC_PLANE's by many levels. */
+static void teeth(th_ctx *t, const char *name, int min_bad, int min_worst)
 {
     qgl_quad_batch b = batch(0);
     qgl_gl_stats_t sa, sm;
@@ -142,8 +200,10 @@ static void teeth(th_ctx *t)
     unsigned char *a = draw(t, QGL_METHOD_AUTO, &b, NULL, &sa);
     unsigned char *m = draw(t, QGL_METHOD_MVC_PLANE, &b, NULL, &sm);
     int worst, bad = count_diff(a, m, 1, &worst);
-    th_check(sa.split == N * N && bad > W * H / 20 && worst > 16,
-             "budget x1000: split %llu, %d pixels over 1/255, largest %d: the comparison has no teeth",
+    printf("%-28s auto split %3llu | pixels over 1/255: %d, largest %d/255\n", name, (unsigned long long)sa.split, bad,
+           worst);
+    th_check(sa.split == N * N && bad > min_bad && worst > min_worst,
+             "%s: split %llu, %d pixels over 1/255, largest %d: the comparison has no teeth", name,
              (unsigned long long)sa.split, bad, worst);
     qgl_gl_set_split_error(t->qgl, 0);
     free(a);
@@ -174,6 +234,9 @@ static void bailey(th_ctx *t)
 int main(void)
 {
     th_ctx t;
+    /* Costs fixed for the planner (shader path 1000 ns a pixel against the split's 1, the grid
+     * never cheaper): it judges every lit quad, whatever this machine would measure. */
+    setenv("QUADGL_COSTS", "100,1000,1,100000000", 1);
     int rc = th_init(&t, W, H, NULL);
     if (rc)
         return rc;
@@ -195,7 +258,31 @@ int main(void)
     grid(-1, 0);
     split = compare(&t, "colour, visible", 0, 255, 0, 0);
     th_check(split == 0, "colour checker: %d quads split", split);
-    teeth(&t);
+    teeth(&t, "colour, budget x1000", W * H / 20, 16);
+
+    grid(0, 0);
+    for (int two = 0; two < 2; two++) {
+        lights(1, two);
+        normals(0.6);
+        qgl_gl_set_split_error(t.qgl, 0); /* forget the pass rate of the quads before */
+        split = compare(&t, two ? "lit two-sided, invisible" : "lit, invisible", 0, 1, 0, 0);
+        th_check(split >= N * N / 2, "lit%s: only %d of %d quads split", two ? " two-sided" : "", split, N * N);
+        if (!two) {
+            split = compare(&t, "lit, invisible, retained", 0, 1, 0, 1);
+            th_check(split >= N * N / 2, "lit, retained: only %d of %d quads split", split, N * N);
+        }
+        normals(-1);
+        split = compare(&t, two ? "lit two-sided, visible" : "lit, visible", 0, 255, 0, 0);
+        th_check(split == 0, "lit%s, normals in a checker: %d quads split", two ? " two-sided" : "", split);
+    }
+    /* after a screenful of lit quads that all failed, the planner judges only some (their
+     * expected saving is below the judging's cost), but keeps judging: invisible ones split */
+    normals(0.6);
+    split = compare(&t, "lit, after visible ones", 0, 1, 0, 0);
+    th_check(split > 0, "lit quads after failures: none split (the planner stopped judging)");
+    normals(-1);
+    teeth(&t, "lit, budget x1000", W * H / 50, 8);
+    lights(0, 0);
 
     texture();
     glEnable(GL_TEXTURE_2D);

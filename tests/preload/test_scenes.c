@@ -781,6 +781,51 @@ static void scene_materials(pt_run *r)
     r->min_quads = 3;
 }
 
+/* A lit quad's corner colours change with a glMaterial given between primitives, and the
+ * planner, which lights corners on the CPU to judge whether the split would show, must see
+ * the change. Light and viewer along z: a corner's colour is d nz + s nz^h. With the first
+ * material (d 0.004, no specular) the quads are within half a level of affine: their split is
+ * invisible. Then the specular turns on: the corner facing the light is 100 levels brighter
+ * than the others, which the split shows as a crease; judged with the old material, the quad
+ * would be split and differ from the reference. */
+static void scene_material_change(pt_run *r)
+{
+    static const float dir[4] = {0, 0, 1, 0}, white[4] = {1, 1, 1, 1}, none[4] = {0, 0, 0, 1};
+    static const float dim[4] = {0.004f, 0.004f, 0.004f, 1}, shiny[4] = {1, 1, 1, 1};
+    static const float nz[4] = {0.6f, 0.6f, 1.0f, 0.6f};
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glLightfv(GL_LIGHT0, GL_AMBIENT, none);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glLightfv(GL_LIGHT0, GL_SPECULAR, white);
+    glLightModelfv(GL_LIGHT_MODEL_AMBIENT, none);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, none);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, dim);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, none);
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 1);
+    for (int q = 0; q < 2; q++) {
+        if (q == 1)
+            glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, shiny);
+        float lit[4][4];
+        glBegin(GL_QUADS);
+        for (int i = 0; i < 4; i++) {
+            float sxy = sqrtf(1 - nz[i] * nz[i]);
+            glNormal3f(i & 1 ? sxy : 0, i & 1 ? 0 : sxy, nz[i]);
+            glVertex2fv(Q[q][i]);
+            float c = dim[0] * nz[i] + (q == 1 ? nz[i] : 0);
+            lit[i][0] = lit[i][1] = lit[i][2] = c > 1 ? 1 : c;
+            lit[i][3] = 1;
+        }
+        glEnd();
+        pt_expect(r, Q[q], lit, 0);
+    }
+    glDisable(GL_LIGHTING);
+    r->checks_reference = 1;
+    r->min_quads = 2;
+}
+
 /* The material state as values to compare with the driver's (bit patterns of the floats). */
 static void material_values(pt_run *r)
 {
@@ -1186,6 +1231,7 @@ static const pt_scene scenes[] = {
     {"batch_states", scene_batch_states},
     {"batch_draws", scene_batch_draws},
     {"materials", scene_materials},
+    {"material_change", scene_material_change},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
     {"strip_blend", scene_strip_blend},
