@@ -149,8 +149,8 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     *planar = qgl__planar(p);
     if (!*planar)
         return 0;
-    if (st->nonaffine) /* lit corners: judged by their colours, which light.c computes */
-        return invisible && st->lit_cpu && split_invisible(ctx, st, v, idx, clip);
+    if (st->nonaffine)
+        return 0;
     int n = gather_attribs(st, v, idx, attr);
     if (memcmp(attr, attr + QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
         memcmp(attr, attr + 2 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
@@ -345,6 +345,9 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
         double p[4][3];
         exact = object_corners(v, idx, p) && quad_grouped(v, idx, p);
     }
+    /* lit corners, not grouped: judged by their colours, which light.c computes */
+    if (!exact && *planar && st->nonaffine && invisible && st->lit_cpu)
+        exact = split_invisible(ctx, st, v, idx, clip);
     return exact;
 }
 
@@ -1497,6 +1500,6 @@ int qgl__draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, co
     ctx->lightvals.current_valid = 0;
     int n = draw_batch(ctx, v, topo, facts, flags, chg, nchg);
     if (nchg) /* the batch's glMaterial calls have reached the driver (or will, replayed) */
-        ctx->lightvals.values_valid = 0;
+        ctx->lightvals.materials_valid = 0;
     return n;
 }

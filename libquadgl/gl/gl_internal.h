@@ -464,7 +464,7 @@ typedef struct qgl__lightval {
     GLfloat amb[4], dif[4], spe[4], pos[4], dir[4], exponent, cos_cutoff, att[3];
 } qgl__lightval;
 typedef struct qgl__lightvals {
-    int values_valid, normal_valid, normal_ok, current_valid;
+    int lights_valid, materials_valid, normal_valid, normal_ok, current_valid;
     GLfloat cur_normal[4], cur_colour[4]; /* the driver's current values, read once per draw */
     qgl__lightval light[8];
     GLfloat model_ambient[4];

@@ -23,11 +23,26 @@ int qgl__same_material(const qgl__verts *v, const size_t idx[4])
     return 1;
 }
 
-static void fetch_values(qgl_context *ctx, const qgl__key *k)
+/* Each query makes the driver flush what it holds (Mesa: its immediate-mode vertices), so
+ * only what changed is asked for: materials after a glMaterial (QGL__D_LIGHT), the lights too
+ * after a change of the fixed-function state; the back material only under two-sided
+ * lighting. */
+static void fetch_materials(qgl_context *ctx, const qgl__key *k)
 {
     struct qgl__gl *gl = &ctx->gl;
     qgl__lightvals *lv = &ctx->lightvals;
     static const GLenum mat_pnames[4] = {GL_EMISSION, GL_AMBIENT, GL_DIFFUSE, GL_SPECULAR};
+    for (int f = 0; f < ((k->flags & QGL__KF_TWO_SIDE) ? 2 : 1); f++) {
+        for (int p = 0; p < 4; p++)
+            gl->GetMaterialfv(f ? GL_BACK : GL_FRONT, mat_pnames[p], lv->mat[f][p]);
+        gl->GetMaterialfv(f ? GL_BACK : GL_FRONT, GL_SHININESS, &lv->shininess[f]);
+    }
+}
+
+static void fetch_lights(qgl_context *ctx, const qgl__key *k)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    qgl__lightvals *lv = &ctx->lightvals;
     for (int i = 0; i < 8; i++) {
         if (!((k->lights >> i) & 1))
             continue;
@@ -47,11 +62,6 @@ static void fetch_values(qgl_context *ctx, const qgl__key *k)
         L->cos_cutoff = (float)cos(cutoff * (M_PI / 180));
     }
     gl->GetFloatv(GL_LIGHT_MODEL_AMBIENT, lv->model_ambient);
-    for (int f = 0; f < 2; f++) {
-        for (int p = 0; p < 4; p++)
-            gl->GetMaterialfv(f ? GL_BACK : GL_FRONT, mat_pnames[p], lv->mat[f][p]);
-        gl->GetMaterialfv(f ? GL_BACK : GL_FRONT, GL_SHININESS, &lv->shininess[f]);
-    }
 }
 
 /* The normal matrix: the transpose of the model-view's upper 3 x 3 inverse (rows r of a[r]
@@ -167,9 +177,13 @@ int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v
         ctx->gl.GetFloatv(GL_CURRENT_COLOR, lv->cur_colour);
         lv->current_valid = 1;
     }
-    if (!lv->values_valid) {
-        fetch_values(ctx, k);
-        lv->values_valid = 1;
+    if (!lv->lights_valid) {
+        fetch_lights(ctx, k);
+        lv->lights_valid = 1;
+    }
+    if (!lv->materials_valid) {
+        fetch_materials(ctx, k);
+        lv->materials_valid = 1;
     }
     if (!lv->normal_valid) {
         lv->normal_ok = normal_matrix(st->modelview, lv->nmat, &lv->rescale);

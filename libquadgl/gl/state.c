@@ -559,8 +559,10 @@ const qgl__state *qgl__state_now(qgl_context *ctx)
     unsigned need = ctx->state_tracked ? ~ctx->state_valid & QGL__D_ALL : QGL__D_ALL;
     if (!need)
         return c;
-    if (need & (QGL__D_FFP | QGL__D_LIGHT))
-        ctx->lightvals.values_valid = 0;
+    if (need & QGL__D_FFP)
+        ctx->lightvals.lights_valid = ctx->lightvals.materials_valid = 0;
+    if (need & QGL__D_LIGHT)
+        ctx->lightvals.materials_valid = 0;
     if (need & QGL__D_XFORM)
         ctx->lightvals.normal_valid = 0;
     if (need & QGL__D_FFP)
