@@ -147,9 +147,7 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
             p[c][k] = q[k] / q[3];
     }
     *planar = qgl__planar(p);
-    if (!*planar)
-        return 0;
-    if (st->nonaffine)
+    if (!*planar || st->nonaffine)
         return 0;
     int n = gather_attribs(st, v, idx, attr);
     if (memcmp(attr, attr + QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
@@ -328,14 +326,13 @@ static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
 static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                       const double *clip[4], int invisible, const qgl__facts *facts, size_t q, int *planar)
 {
+    int one_material = !st->pv_material || qgl__same_material(v, idx);
     if (facts) {
         *planar = facts->quad[q] & QGL__F_PLANAR;
-        if (st->pv_material && !qgl__same_material(v, idx))
-            return 0;
-        return exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
-               (invisible && *planar && split_invisible(ctx, st, v, idx, clip));
+        return one_material && (exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
+                                (invisible && *planar && split_invisible(ctx, st, v, idx, clip)));
     }
-    if (st->pv_material && !qgl__same_material(v, idx)) {
+    if (!one_material) {
         double p[4][3];
         *planar = object_corners(v, idx, p) && qgl__planar(p);
         return 0;

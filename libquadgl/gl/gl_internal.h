@@ -443,8 +443,9 @@ typedef struct qgl__state {
     int order_free;           /* the nearest fragment wins whatever the order quads are drawn in
                                  (depth tested against a depth buffer, written, no blending,
                                  stencil or logic op): a batch may be drawn grouped by path */
-    int pv_material;          /* lit quads with per-vertex materials: only the shaders draw them
-                                 right (the driver's split sees the last material only) */
+    int pv_material;          /* lit quads with per-vertex materials: the split draws a run of
+                                 quads with one material, so only quads whose corners share one
+                                 may take it */
     int lit_cpu;              /* smooth fixed-function lighting alone makes the per-vertex work
                                  non-affine: light.c computes the corners' colours */
     int lit_by_inputs;        /* the per-vertex work is a function of the captured attributes
@@ -481,7 +482,8 @@ int qgl__same_material(const qgl__verts *v, const size_t idx[4]);
 enum { QGL__LIT_FLOATS = 7 };
 
 /* The lit colours of corners idx of v, per face (front, then back under two-sided lighting):
- * the number of faces, 0 where they cannot be computed (a singular model-view). */
+ * the number of faces, 0 where they cannot be computed (a singular model-view). Per-vertex
+ * materials are taken from the first corner: the caller has checked that all four share it. */
 int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                      float out[2][4 * QGL__LIT_FLOATS]);
 

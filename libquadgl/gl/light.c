@@ -64,8 +64,8 @@ static void fetch_lights(qgl_context *ctx, const qgl__key *k)
     gl->GetFloatv(GL_LIGHT_MODEL_AMBIENT, lv->model_ambient);
 }
 
-/* The normal matrix: the transpose of the model-view's upper 3 x 3 inverse (rows r of a[r]
- * are the normal's eye coordinates), and GL_RESCALE_NORMAL's factor; 0 when singular. */
+/* The normal matrix, the transpose of the model-view's upper 3 x 3 inverse (n_eye[r] is row r
+ * of it times n), and GL_RESCALE_NORMAL's factor; 0 when singular. */
 static int normal_matrix(const double mv[16], double nm[3][3], double *rescale)
 {
     double m[3][3], inv[3][3];
@@ -191,12 +191,8 @@ int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v
     }
     if (!lv->normal_ok)
         return 0;
-    const float *vmat = NULL; /* per-vertex materials: the split draws a quad with its first's */
-    if (v->mask & QGL__A_MATERIAL) {
-        if (!qgl__same_material(v, idx))
-            return 0;
-        vmat = v->mat + QGL__MATERIAL_FLOATS * idx[0];
-    }
+    /* per-vertex materials: the planner judges only quads whose corners share one */
+    const float *vmat = (v->mask & QGL__A_MATERIAL) ? v->mat + QGL__MATERIAL_FLOATS * idx[0] : NULL;
     int faces = (k->flags & QGL__KF_TWO_SIDE) ? 2 : 1;
     for (int f = 0; f < faces; f++) {
         float mat[4][4], shininess = lv->shininess[f];

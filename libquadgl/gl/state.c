@@ -559,14 +559,14 @@ const qgl__state *qgl__state_now(qgl_context *ctx)
     unsigned need = ctx->state_tracked ? ~ctx->state_valid & QGL__D_ALL : QGL__D_ALL;
     if (!need)
         return c;
-    if (need & QGL__D_FFP)
-        ctx->lightvals.lights_valid = ctx->lightvals.materials_valid = 0;
+    if (need & QGL__D_FFP) {
+        ctx->lightvals.lights_valid = 0;
+        need |= QGL__D_LIGHT | QGL__D_XFORM; /* materials too; texture matrices of newly enabled units */
+    }
     if (need & QGL__D_LIGHT)
         ctx->lightvals.materials_valid = 0;
     if (need & QGL__D_XFORM)
         ctx->lightvals.normal_valid = 0;
-    if (need & QGL__D_FFP)
-        need |= QGL__D_XFORM; /* texture matrices of newly enabled units */
     if (need & QGL__D_RASTER)
         query_raster(ctx, c);
     if (need & QGL__D_TEXIMAGE)
