@@ -125,14 +125,15 @@ static void budget(th_ctx *t)
 /* Pixel-exact coverage and colour continuity across the shared edge (near x = 0) of two
  * quads: colours as given, alpha 1/4 accumulated by blending (RGB replaced), so that alpha
  * counts the hits while the paths are those of the colours. */
-static void seam(th_ctx *t, qgl_method left, qgl_method right, double amp_left, double amp_right, const char *name)
+static void seam(th_ctx *t, qgl_method left, qgl_method right, double amp_left, double amp_right, float lift,
+                 const char *name)
 {
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
     glMatrixMode(GL_MODELVIEW);
     glLoadIdentity();
     const float l[4][3] = {{-0.9f, -0.8f, 0}, {0.013f, -0.9f, 0}, {-0.021f, 0.85f, 0}, {-0.8f, 0.7f, 0}};
-    const float r[4][3] = {{0.013f, -0.9f, 0}, {0.9f, -0.7f, 0.3f}, {0.8f, 0.9f, 0}, {-0.021f, 0.85f, 0}};
+    const float r[4][3] = {{0.013f, -0.9f, 0}, {0.9f, -0.7f, lift}, {0.8f, 0.9f, 0}, {-0.021f, 0.85f, 0}};
     float cl[4][4], cr[4][4];
     for (int i = 0; i < 4; i++)
         for (int c = 0; c < 4; c++) {
@@ -175,6 +176,8 @@ static void seam(th_ctx *t, qgl_method left, qgl_method right, double amp_left, 
            (unsigned long long)st[1].subdiv, (unsigned long long)st[1].mvc, (unsigned long long)st[1].split, twice,
            jumps);
     th_check(st[0].subdiv == 1, "%s: the left quad did not take the grid", name);
+    th_check(right != QGL_METHOD_SUBDIV || (st[1].subdiv == 1 && st[1].subdiv_triangles != st[0].subdiv_triangles),
+             "%s: the right quad did not take a grid of another size", name);
     th_check(twice == 0, "%s: %d pixels hit twice", name, twice);
     th_check(jumps == 0, "%s: %d colour jumps across the shared edge", name, jumps);
 }
@@ -221,10 +224,10 @@ int main(void)
         return 77;
     }
     budget(&t);
-    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_MVC, 0.05, 1.0, "grid | shader path");
-    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_SPLIT, 1.0, 1.0, "grid | split");
-    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_AUTO, 0.02, 0.2, "coarse grid | fine grid");
-    seam(&t, QGL_METHOD_SUBDIV, QGL_METHOD_MVC, 1.0, 0.3, "finest grid | shader");
+    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_MVC, 0.05, 1.0, 0.3f, "grid | shader path");
+    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_SPLIT, 1.0, 1.0, 0.3f, "grid | split");
+    seam(&t, QGL_METHOD_AUTO, QGL_METHOD_SUBDIV, 0.02, 0.2, 0, "coarse grid | fine grid");
+    seam(&t, QGL_METHOD_SUBDIV, QGL_METHOD_MVC, 1.0, 0.3, 0.3f, "finest grid | shader");
     th_free(&t);
     qgl_gl_desc d = {.get_proc = th_get_proc};
     if (th_init(&t, W, H, &d) == 0) {
