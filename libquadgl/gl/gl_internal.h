@@ -477,6 +477,7 @@ typedef struct qgl__lightvals {
 /* Whether corners idx of v (per-vertex materials) have one material: the split, which draws
  * a quad with its first corner's, then lights it as the shader path does. */
 int qgl__same_material(const qgl__verts *v, const size_t idx[4]);
+int qgl__material_set(qgl_context *ctx, GLenum face, GLenum pname, const float v[4]);
 
 /* Per corner: primary RGBA, secondary RGB. */
 enum { QGL__LIT_FLOATS = 7 };

@@ -39,6 +39,36 @@ static void fetch_materials(qgl_context *ctx, const qgl__key *k)
     }
 }
 
+/* A glMaterial the driver took outside glBegin/glEnd, into the copy, so that the planner
+ * need not ask again (programs set materials between parts, many times a frame). 0 where the
+ * copy is not whole yet or the driver may refuse the call (GL's errors: a bad face, name or
+ * shininess): then the copy is read again. Under colour material the driver keeps the
+ * tracked values apart from glMaterial, but the planner takes those from the colour, and
+ * turning colour material off re-reads the copy (a change of the fixed-function state). */
+int qgl__material_set(qgl_context *ctx, GLenum face, GLenum pname, const float v[4])
+{
+    qgl__lightvals *lv = &ctx->lightvals;
+    static const GLenum names[4] = {GL_EMISSION, GL_AMBIENT, GL_DIFFUSE, GL_SPECULAR};
+    int f0 = face == GL_BACK, f1 = face == GL_FRONT ? 0 : 1;
+    if (!lv->materials_valid || (face != GL_FRONT && face != GL_BACK && face != GL_FRONT_AND_BACK))
+        return 0;
+    if (pname == GL_SHININESS && !(v[0] >= 0 && v[0] <= 128))
+        return 0;
+    int known = pname == GL_SHININESS || pname == GL_AMBIENT_AND_DIFFUSE || pname == GL_COLOR_INDEXES;
+    for (int p = 0; p < 4; p++)
+        known |= pname == names[p];
+    if (!known)
+        return 0;
+    for (int f = f0; f <= f1; f++) {
+        if (pname == GL_SHININESS)
+            lv->shininess[f] = v[0];
+        for (int p = 0; p < 4; p++)
+            if (pname == names[p] || (pname == GL_AMBIENT_AND_DIFFUSE && (p == 1 || p == 2)))
+                memcpy(lv->mat[f][p], v, 4 * sizeof(float));
+    }
+    return 1;
+}
+
 static void fetch_lights(qgl_context *ctx, const qgl__key *k)
 {
     struct qgl__gl *gl = &ctx->gl;

@@ -296,6 +296,13 @@ static int pl_material_inert(pl_ctx *x)
 /* Integer colours map [-2^31, 2^31 - 1] onto [-1, 1]; shininess and indexes are plain. The
  * scalar forms give one value, which the driver takes unconverted for any parameter (what it
  * reads past it is undefined; here zeros). */
+static const float *material_values(const GLfloat *fv, const GLint *iv, int n, int given, float v[4])
+{
+    for (int i = 0; i < n && i < given; i++)
+        v[i] = fv ? fv[i] : (n == 4 && given == 4) ? PL_I(iv[i]) : (float)iv[i];
+    return v;
+}
+
 int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, const GLint *iv, int given)
 {
     float v[4] = {0, 0, 0, 0};
@@ -307,7 +314,11 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
         }
         if (x->batch.v.n && (x->compiling || x->native_begin || !pl_material_inert(x)))
             pl_batch_flush(x);
-        pl_mark(x, PL_D_LIGHT); /* the planner lights corners with the driver's materials */
+        /* the planner lights corners with the driver's materials: a copy of the values, or
+         * (inside a list, a form the driver may refuse) read again */
+        if (x->compiling || !x->qgl || n == 0 || given != n || (!fv && !iv) ||
+            !qgl__material_set(x->qgl, face, pname, material_values(fv, iv, n, given, v)))
+            pl_mark(x, PL_D_LIGHT);
         return 0;
     }
     if (!x->compiling && pl_material_inert(x)) {
@@ -316,9 +327,7 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
-    for (int i = 0; i < n && i < given; i++)
-        v[i] = fv ? fv[i] : (n == 4 && given == 4) ? PL_I(iv[i]) : (float)iv[i];
-    pl_push_material(x, face, pname, v, n);
+    pl_push_material(x, face, pname, material_values(fv, iv, n, given, v), n);
     return 1;
 }
 
