@@ -310,12 +310,42 @@ void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t 
                QGL__MATERIAL_FLOATS * n * sizeof(float));
 }
 
+/* Strip quads' corners into quads, k floats per vertex (sizes as constants: inlined copies). */
+static void unroll_floats(float *d, const float *s, size_t k, size_t nq, const int from[4])
+{
+    for (size_t q = 0; q < nq; q++, d += 4 * k, s += 2 * k)
+        for (int c = 0; c < 4; c++) {
+            const float *f = s + (size_t)from[c] * k;
+            float *t = d + (size_t)c * k;
+            switch (k) {
+            case 1: t[0] = f[0]; break;
+            case 3: memcpy(t, f, 3 * sizeof(float)); break;
+            case 4: memcpy(t, f, 4 * sizeof(float)); break;
+            default: memcpy(t, f, k * sizeof(float));
+            }
+        }
+}
+
 void qgl__verts_unroll(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t nq, int shift)
 {
     static const int strip[4] = {0, 1, 3, 2};
-    for (size_t q = 0; q < nq; q++)
-        for (int c = 0; c < 4; c++)
-            qgl__verts_copy(d, i + 4 * q + (size_t)c, s, j + 2 * q + (size_t)strip[(c + shift) & 3]);
+    int from[4];
+    for (int c = 0; c < 4; c++)
+        from[c] = strip[(c + shift) & 3];
+    unsigned m = s->mask;
+    unroll_floats(d->pos + 4 * i, s->pos + 4 * j, 4, nq, from);
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (m & (1u << a)) {
+            size_t k = (size_t)qgl__attribs[a].floats;
+            unroll_floats(d->attr[a] + k * i, s->attr[a] + k * j, k, nq, from);
+        }
+    if (m & QGL__A_MATERIAL)
+        unroll_floats(d->mat + QGL__MATERIAL_FLOATS * i, s->mat + QGL__MATERIAL_FLOATS * j, QGL__MATERIAL_FLOATS, nq,
+                      from);
+    if (m & QGL__A_EDGE)
+        for (size_t q = 0; q < nq; q++)
+            for (int c = 0; c < 4; c++)
+                d->edge[i + 4 * q + (size_t)c] = s->edge[j + 2 * q + (size_t)from[c]];
 }
 
 void qgl__verts_free(qgl__verts *v)

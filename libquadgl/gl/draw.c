@@ -82,44 +82,82 @@ static int ensure(void **p, size_t *cap, size_t n, size_t elem)
     return 1;
 }
 
-/* Bounding box of the projected quad, in pixels squared. */
-static double bbox_area_px(const double *clip[4], const GLint vp[4])
+/* The corners on screen (every w > 0), in pixels from the viewport's centre: what the
+ * bounding box and the gain's samples measure. */
+static void pixel_corners(const double *clip[4], const GLint vp[4], double px[4][2])
 {
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-    for (int i = 0; i < 4; i++) { /* comparisons, not fmin/fmax: those are library calls here */
-        double inv = 1.0 / clip[i][3], x = clip[i][0] * inv, y = clip[i][1] * inv;
-        x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1, y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
+    double hx = 0.5 * vp[2], hy = 0.5 * vp[3];
+    for (int i = 0; i < 4; i++) {
+        double inv = 1.0 / clip[i][3];
+        px[i][0] = clip[i][0] * inv * hx, px[i][1] = clip[i][1] * inv * hy;
     }
-    return (x1 - x0) * 0.5 * vp[2] * (y1 - y0) * 0.5 * vp[3];
 }
 
-/* The attributes that reach the picture, per corner, for the affinity test: the colours when
- * smooth and unlit (primary, and secondary under colour sum), every textured unit's
- * coordinates after its texture matrix (texgen, where on, is linear in the position: affine),
- * the fog coordinate when it is fog's source; with a state the shader path does not model,
- * every captured attribute. */
-static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_t idx[4], double *attr)
+/* Bounding box of the projected quad, in pixels squared. */
+static double bbox_area_px(const double px[4][2])
+{
+    double x0 = px[0][0], x1 = x0, y0 = px[0][1], y1 = y0;
+    for (int i = 1; i < 4; i++) { /* comparisons, not fmin/fmax: those are library calls here */
+        double x = px[i][0], y = px[i][1];
+        x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1, y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
+    }
+    return (x1 - x0) * (y1 - y0);
+}
+
+/* The attributes that reach the picture (QGL__A_* bits among mask), for the affinity test:
+ * the colours when smooth and unlit (primary, and secondary under colour sum), every
+ * textured unit's coordinates (texgen, where on, is linear in the position: affine), the fog
+ * coordinate when it is fog's source; with a state the shader path does not model, every
+ * captured attribute. */
+static unsigned attribs_read(const qgl__state *st, unsigned mask)
 {
     const qgl__key *key = &st->ffp;
     int smooth = st->shade_model != GL_FLAT, all = !st->modelled;
+    unsigned m = 0;
+    if (smooth)
+        m |= QGL__A_COLOR;
+    if ((smooth && (key->flags & QGL__KF_COLOR_SUM)) || all)
+        m |= QGL__A_COLOR2;
+    if ((key->fog && !(key->flags & QGL__KF_FOG_DEPTH)) || all)
+        m |= QGL__A_FOG;
+    for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
+        if (key->unit[u].target || all)
+            m |= QGL__A_TEX0 << u;
+    return m & mask;
+}
+
+/* Whether every attribute that reaches the picture is the same at the four corners, as
+ * captured (equal inputs give equal values after any texture matrix). */
+static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx[4])
+{
+    for (unsigned bits = read; bits; bits &= bits - 1) {
+        int a = __builtin_ctz(bits), k = qgl__attribs[a].floats;
+        const float *f = v->attr[a];
+        for (int c = 1; c < 4; c++)
+            if (memcmp(f + (size_t)k * idx[0], f + (size_t)k * idx[c], (size_t)k * sizeof(float)) != 0)
+                return 0;
+    }
+    return 1;
+}
+
+/* Those attributes per corner, texture coordinates after their unit's texture matrix. */
+static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_t idx[4], double *attr)
+{
+    unsigned read = attribs_read(st, v->mask);
     int n = 0;
     for (int c = 0; c < 4; c++) {
         double *a = attr + c * QGL__ATTR_MAX;
         int k = 0;
-        size_t i = idx[c];
-        if ((v->mask & QGL__A_COLOR) && smooth)
-            for (int j = 0; j < 4; j++)
-                a[k++] = v->col[4 * i + j];
-        if ((v->mask & QGL__A_COLOR2) && ((smooth && (key->flags & QGL__KF_COLOR_SUM)) || all))
-            for (int j = 0; j < 3; j++)
-                a[k++] = v->col2[3 * i + j];
-        if ((v->mask & QGL__A_FOG) && ((key->fog && !(key->flags & QGL__KF_FOG_DEPTH)) || all))
-            a[k++] = v->fog[i];
-        for (int u = 0; u < QGL_MAX_TEXUNITS; u++) {
-            if (!(v->mask & (QGL__A_TEX0 << u)) || !(key->unit[u].target || all))
+        for (unsigned bits = read; bits; bits &= bits - 1) {
+            int b = __builtin_ctz(bits), f = qgl__attribs[b].floats, u = qgl__attribs[b].unit;
+            const float *src = v->attr[b] + (size_t)f * idx[c];
+            if (u < 0) {
+                for (int j = 0; j < f; j++)
+                    a[k++] = src[j];
                 continue;
+            }
             double t[4];
-            transform(key->unit[u].target ? st->texmat[u] : identity, v->tex[u] + 4 * i, t);
+            transform(st->ffp.unit[u].target ? st->texmat[u] : identity, src, t);
             for (int j = 0; j < 4; j++)
                 a[k++] = t[j];
         }
@@ -128,34 +166,25 @@ static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_
     return n;
 }
 
-/* Re-pack corner-major attributes (16 slots each) into the n-per-corner layout of the core. */
 static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
-                           const double *clip[4]);
+                           const double *clip[4], const double px[4][2], const double p[4][3]);
 
 /* Whether the split draws the quad as the smooth path would: exactly, or (invisible set) by
  * split_invisible's bound, which is tried before the affinity test, being cheaper where it
  * passes. */
 static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
-                          const double *clip[4], int invisible, int *planar)
+                          const double *clip[4], const double px[4][2], const double p[4][3], int invisible,
+                          int *planar)
 {
-    double p[4][3], attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
-    for (int c = 0; c < 4; c++) {
-        const float *q = v->pos + 4 * idx[c];
-        if (!(q[3] > 0))
-            return *planar = 0;
-        for (int k = 0; k < 3; k++)
-            p[c][k] = q[k] / q[3];
-    }
+    double attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
     *planar = qgl__planar(p);
     if (!*planar || st->nonaffine)
         return 0;
-    int n = gather_attribs(st, v, idx, attr);
-    if (memcmp(attr, attr + QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
-        memcmp(attr, attr + 2 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0 &&
-        memcmp(attr, attr + 3 * QGL__ATTR_MAX, (size_t)n * sizeof *attr) == 0)
+    if (attribs_constant(v, attribs_read(st, v->mask), idx))
         return 1; /* nothing varies over the quad (a flat-coloured face): the commonest case */
-    if (invisible && split_invisible(ctx, st, v, idx, clip))
+    if (invisible && split_invisible(ctx, st, v, idx, clip, px, p))
         return 1;
+    int n = gather_attribs(st, v, idx, attr);
     for (int c = 0; c < 4; c++)
         for (int k = 0; k < n; k++)
             packed[c * n + k] = attr[c * QGL__ATTR_MAX + k];
@@ -242,8 +271,11 @@ static int object_corners(const qgl__verts *v, const size_t idx[4], double p[4][
         const float *q = v->pos + 4 * idx[c];
         if (!(q[3] > 0))
             return 0;
-        for (int k = 0; k < 3; k++)
-            p[c][k] = q[k] / q[3];
+        if (q[3] == 1) /* nearly always: three divisions saved */
+            p[c][0] = q[0], p[c][1] = q[1], p[c][2] = q[2];
+        else
+            for (int k = 0; k < 3; k++)
+                p[c][k] = q[k] / q[3];
     }
     return 1;
 }
@@ -324,27 +356,28 @@ static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
  * retained batch, else tested now. Under per-vertex materials the split lights a quad with
  * one material, so its corners must have one. */
 static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
-                      const double *clip[4], int invisible, const qgl__facts *facts, size_t q, int *planar)
+                      const double *clip[4], const double px[4][2], int invisible, const qgl__facts *facts, size_t q,
+                      int *planar)
 {
     int one_material = !st->pv_material || qgl__same_material(v, idx);
+    double p[4][3];
+    if (!object_corners(v, idx, p))
+        return *planar = 0;
     if (facts) {
         *planar = facts->quad[q] & QGL__F_PLANAR;
         return one_material && (exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
-                                (invisible && *planar && split_invisible(ctx, st, v, idx, clip)));
+                                (invisible && *planar && split_invisible(ctx, st, v, idx, clip, px, p)));
     }
     if (!one_material) {
-        double p[4][3];
-        *planar = object_corners(v, idx, p) && qgl__planar(p);
+        *planar = qgl__planar(p);
         return 0;
     }
-    int exact = split_is_exact(ctx, st, v, idx, clip, invisible, planar);
-    if (!exact && *planar && st->nonaffine && st->lit_by_inputs) {
-        double p[4][3];
-        exact = object_corners(v, idx, p) && quad_grouped(v, idx, p);
-    }
+    int exact = split_is_exact(ctx, st, v, idx, clip, px, p, invisible, planar);
+    if (!exact && *planar && st->nonaffine && st->lit_by_inputs)
+        exact = quad_grouped(v, idx, p);
     /* lit corners, not grouped: judged by their colours, which light.c computes */
     if (!exact && *planar && st->nonaffine && invisible && st->lit_cpu)
-        exact = split_invisible(ctx, st, v, idx, clip);
+        exact = split_invisible(ctx, st, v, idx, clip, px, p);
     return exact;
 }
 
@@ -366,10 +399,13 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
  * included), a 121 x 121 grid's maximum was at most 1.65 times the sampled one for the
  * screen-space weights, and d(p) was parallel to n everywhere on it; for the in-plane weights
  * tests/core/test_plane measures the same ratio (below SPLIT_SAFETY). Sampling costs nine
- * weight evaluations, so a bound that needs none comes first: on a convex quad both weight vectors lie in [0, 1], so
- * |delta| <= 1 / max |n_i| (at most 2); quads within the budget by it (a smooth colour map on
- * a fine mesh) are split at once, and quads more than 8 times over it (where the samples,
- * which find about a quarter of it, could not pass) are not sampled. */
+ * weight evaluations, so a bound that needs none comes first: on a convex quad both weight
+ * vectors lie in [0, 1], so |delta| <= 1 / max |n_i| (at most 2). The residuals over that
+ * maximum do not depend on the scale of n, and a planar quad's n is the same in object space
+ * as in clip space up to scale, so this bound needs no screen work at all: quads within the
+ * budget by it (a smooth colour map on a fine mesh) are split at once, and quads more than 8
+ * times over it (where the samples, which find about a quarter of it, could not pass) are not
+ * sampled. */
 
 /* The sampled maximum of |delta| times this bounds the true maximum (measured: see above). */
 #define SPLIT_SAFETY 2.0
@@ -416,37 +452,71 @@ static double det3(const double *a, const double *b, const double *c)
     return a[0] * (b[1] * c[3] - b[3] * c[1]) - a[1] * (b[0] * c[3] - b[3] * c[0]) + a[3] * (b[0] * c[1] - b[1] * c[0]);
 }
 
-/* n, the null vector of the corners' clip (x, y, w) (cofactors), scaled to |n| = 1; 0 when the
- * quad has no extent on screen. */
-static int dependency(const double *clip[4], double n[4])
+/* n, the null vector of the corners' clip (x, y, w) (cofactors), and its squared length; 0
+ * when the quad has no extent on screen. It is left unnormalised: the gain's first bound is
+ * the same for any scale of n, and most quads need no more. */
+static double dependency(const double *clip[4], double n[4])
 {
     n[0] = det3(clip[1], clip[2], clip[3]), n[1] = -det3(clip[0], clip[2], clip[3]);
     n[2] = det3(clip[0], clip[1], clip[3]), n[3] = -det3(clip[0], clip[1], clip[2]);
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + n[3] * n[3]);
-    if (!(len > 0 && len < INFINITY))
+    double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + n[3] * n[3];
+    return len2 > 0 && len2 < INFINITY ? len2 : 0;
+}
+
+/* n in object space, where a planar quad's dependency is the same up to scale (clip positions
+ * are a linear map of (x, y, z, 1)): the diagonals cross at p0 + t (p2 - p0) = p1 + u (p3 - p1),
+ * so (1 - t) p0 + (u - 1) p1 + t p2 - u p3 = 0 with coefficients summing to 0. 0 unless both
+ * fractions are within (0.01, 0.99): the quad strictly convex in its plane, and therefore on
+ * screen when every corner is in front of the eye. */
+static int object_dependency(const double p[4][3], double n[4])
+{
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; k++)
+        d1[k] = p[2][k] - p[0][k], d2[k] = p[3][k] - p[1][k], r[k] = p[1][k] - p[0][k];
+    double c[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+    double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    /* t = ((r x d2) . c) / cc, u = ((r x d1) . c) / cc, as triple products */
+    double a = c[0] * (r[1] * d2[2] - r[2] * d2[1]) + c[1] * (r[2] * d2[0] - r[0] * d2[2]) +
+               c[2] * (r[0] * d2[1] - r[1] * d2[0]);
+    double b = c[0] * (r[1] * d1[2] - r[2] * d1[1]) + c[1] * (r[2] * d1[0] - r[0] * d1[2]) +
+               c[2] * (r[0] * d1[1] - r[1] * d1[0]);
+    if (!(cc > 0 && cc < INFINITY && a > 0.01 * cc && a < 0.99 * cc && b > 0.01 * cc && b < 0.99 * cc))
         return 0;
-    for (int i = 0; i < 4; i++)
-        n[i] /= len;
+    double t = a / cc, u = b / cc;
+    n[0] = 1 - t, n[1] = u - 1, n[2] = t, n[3] = -u;
+    return 1;
+}
+
+/* Whether the screen quad v is strictly convex: its diagonals cross inside both, at fractions
+ * within (0.01, 0.99) of each; *t the fraction along the diagonal from corner 0, when asked
+ * (a division, which most calls do not need). */
+static int crossing(const double v[4][2], double *t)
+{
+    double d1x = v[2][0] - v[0][0], d1y = v[2][1] - v[0][1], d2x = v[3][0] - v[1][0], d2y = v[3][1] - v[1][1];
+    double den = d1x * d2y - d1y * d2x, rx = v[1][0] - v[0][0], ry = v[1][1] - v[0][1];
+    double a = rx * d2y - ry * d2x, b = rx * d1y - ry * d1x;
+    if (den < 0)
+        den = -den, a = -a, b = -b;
+    if (!(den > 0 && a > 0.01 * den && a < 0.99 * den && b > 0.01 * den && b < 0.99 * den))
+        return 0;
+    if (t)
+        *t = a / den;
     return 1;
 }
 
 /* The sample points: the diagonals' crossing, half-way from it to each corner, the centroids
- * of the triangles it forms with each edge; 0 unless the quad is strictly convex on screen. */
-static int gain_samples(const double v[4][2], double pts[9][2])
+ * of the triangles it forms with each edge (v strictly convex). */
+static void gain_samples(const double v[4][2], double pts[9][2])
 {
-    double d1x = v[2][0] - v[0][0], d1y = v[2][1] - v[0][1], d2x = v[3][0] - v[1][0], d2y = v[3][1] - v[1][1];
-    double den = d1x * d2y - d1y * d2x, rx = v[1][0] - v[0][0], ry = v[1][1] - v[0][1];
-    double t = (rx * d2y - ry * d2x) / den, u = (rx * d1y - ry * d1x) / den;
-    if (!(t > 0.01 && t < 0.99 && u > 0.01 && u < 0.99))
-        return 0;
-    double cx = v[0][0] + t * d1x, cy = v[0][1] + t * d1y;
+    double t = 0.5;
+    crossing(v, &t);
+    double cx = v[0][0] + t * (v[2][0] - v[0][0]), cy = v[0][1] + t * (v[2][1] - v[0][1]);
     pts[0][0] = cx, pts[0][1] = cy;
     for (int i = 0; i < 4; i++) {
         int j = (i + 1) & 3;
         pts[1 + i][0] = 0.5 * (cx + v[i][0]), pts[1 + i][1] = 0.5 * (cy + v[i][1]);
         pts[5 + i][0] = (cx + v[i][0] + v[j][0]) / 3, pts[5 + i][1] = (cy + v[i][1] + v[j][1]) / 3;
     }
-    return 1;
 }
 
 /* AUTO's smooth weights at a screen point: the in-plane weights of the surface point there,
@@ -461,29 +531,20 @@ static int plane_weights(const qgl_plane *pl, const double sp[4], double out[4])
     return qgl_weights_inplane(pl, xy[0], xy[1], out);
 }
 
-/* Whether the sampled gain max |delta| (n unit length) times SPLIT_SAFETY stays within limit.
- * The crossing comes first: most quads that fail, fail there, after one weight evaluation. */
-static int gain_within(const double *clip[4], const GLint vp[4], const double n[4], double limit,
+/* Whether the sampled gain max |delta| times SPLIT_SAFETY stays within limit, for n of squared
+ * length len2 and limit from that n (qgl__gain_limit). The screen corners v are in pixels, as
+ * the shader path weighs (the dependency in clip space is the same). The crossing comes first:
+ * most quads that fail, fail there, after one weight evaluation. */
+static int gain_within(const double v[4][2], const double *clip[4], const double n[4], double len2, double limit,
                        const double obj[4][3])
 {
-    double v[4][2], w[4], cl[4][4], pts[9][2];
-    for (int i = 0; i < 4; i++) { /* in pixels, as the shader path weighs (n is unchanged) */
-        memcpy(cl[i], clip[i], sizeof cl[i]);
-        cl[i][0] *= 0.5 * vp[2], cl[i][1] *= 0.5 * vp[3];
-        w[i] = cl[i][3];
-        v[i][0] = cl[i][0] / w[i], v[i][1] = cl[i][1] / w[i];
-    }
-    if (!gain_samples(v, pts))
+    qgl_plane pl; /* the samples need AUTO's in-plane weights */
+    if (!crossing(v, NULL) || qgl_plane_frame(obj, &pl) != 0)
         return 0;
-    double nmax = 0;
-    for (int i = 0; i < 4; i++)
-        nmax = fabs(n[i]) > nmax ? fabs(n[i]) : nmax;
-    if (limit * nmax >= 1)
-        return 1;
-    qgl_plane pl; /* the samples need AUTO's in-plane weights: the frame only now */
-    if (limit * nmax < 0.125 || qgl_plane_frame(obj, &pl) != 0)
-        return 0;
-    limit /= SPLIT_SAFETY;
+    /* |delta| / |n| <= limit |n| for the unit-length gain against the unit-length limit */
+    limit *= len2 / SPLIT_SAFETY;
+    double w[4] = {clip[0][3], clip[1][3], clip[2][3], clip[3][3]}, pts[9][2];
+    gain_samples(v, pts);
     for (int k = 0; k < 9; k++) {
         double mvc[4], sp[4];
         split_weights(v, w, 0, pts[k][0], pts[k][1], sp);
@@ -502,32 +563,32 @@ static int gain_within(const double *clip[4], const GLint vp[4], const double n[
 }
 
 /* Largest |n . (f - a)| over the values a that f takes on the quad (between its corners'
- * smallest and largest value f[c]); for a planar quad (sum n = 0) this is |n . f|. */
-static double range_residual(const double n[4], const double f[4])
+ * smallest and largest value f[c]), sn = sum n; for a planar quad (sum n = 0) this is |n . f|. */
+static inline double range_residual(const double n[4], double sn, const double f[4])
 {
-    double r = 0, sn = 0, lo = INFINITY, hi = -INFINITY;
-    for (int c = 0; c < 4; c++) {
-        r += n[c] * f[c];
-        sn += n[c];
-        lo = f[c] < lo ? f[c] : lo;
-        hi = f[c] > hi ? f[c] : hi;
-    }
-    return fmax(fabs(r - sn * lo), fabs(r - sn * hi));
+    double r = n[0] * f[0] + n[1] * f[1] + n[2] * f[2] + n[3] * f[3];
+    double lo = f[0] < f[1] ? f[0] : f[1], hi = f[0] < f[1] ? f[1] : f[0];
+    lo = f[2] < lo ? f[2] : lo, hi = f[2] > hi ? f[2] : hi;
+    lo = f[3] < lo ? f[3] : lo, hi = f[3] > hi ? f[3] : hi;
+    double a = fabs(r - sn * lo), b = fabs(r - sn * hi);
+    return a > b ? a : b;
 }
 
 /* Largest residual over the components of an attribute (size floats per vertex at a), values
  * clamped to [0, 1] where the pipeline clamps them (colours). */
-static double residual(const double n[4], const float *a, int size, const size_t idx[4], int clamp)
+static double residual(const double n[4], double sn, const float *a, int size, const size_t idx[4], int clamp)
 {
     double worst = 0;
+    const float *cn[4] = {a + (size_t)size * idx[0], a + (size_t)size * idx[1], a + (size_t)size * idx[2],
+                          a + (size_t)size * idx[3]};
     for (int k = 0; k < size; k++) {
         double f[4];
         for (int c = 0; c < 4; c++) {
-            f[c] = a[(size_t)size * idx[c] + (size_t)k];
+            f[c] = cn[c][k];
             if (clamp)
                 f[c] = f[c] < 0 ? 0 : f[c] > 1 ? 1 : f[c];
         }
-        double r = range_residual(n, f);
+        double r = range_residual(n, sn, f);
         worst = r > worst ? r : worst;
     }
     return worst;
@@ -536,7 +597,8 @@ static double residual(const double n[4], const float *a, int size, const size_t
 /* Unit u's texel residual: its coordinates after the texture matrix, whose q must be one
  * positive constant over the quad (s/q then errs by the residual of s over q), in texels of
  * level 0; INFINITY for generated coordinates and cube maps (not judged). */
-static double texel_residual(const qgl__state *st, const qgl__verts *v, const size_t idx[4], const double n[4], int u)
+static double texel_residual(const qgl__state *st, const qgl__verts *v, const size_t idx[4], const double n[4],
+                             double sn, int u)
 {
     const qgl__unit_key *uk = &st->ffp.unit[u];
     if (uk->target == QGL__T_CUBE || uk->gen[0] || uk->gen[1] || uk->gen[2] || uk->gen[3])
@@ -553,7 +615,7 @@ static double texel_residual(const qgl__state *st, const qgl__verts *v, const si
     double worst = 0;
     for (int k = 0; k < dims; k++) {
         double f[4] = {t[0][k], t[1][k], t[2][k], t[3][k]};
-        double e = range_residual(n, f) / t[0][3] * st->texsize[u][k];
+        double e = range_residual(n, sn, f) / t[0][3] * st->texsize[u][k];
         worst = e > worst ? e : worst;
     }
     return worst;
@@ -574,7 +636,7 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
     if (ctx->split_error < 0 || !st->modelled || ((st->nonaffine || st->pv_material) && !st->lit_cpu))
         return 0;
     int smooth = st->shade_model != GL_FLAT;
-    double colour = 0;
+    double colour = 0, sn = n[0] + n[1] + n[2] + n[3];
     if (st->lit_cpu) {
         float lit[2][4 * QGL__LIT_FLOATS];
         int faces = qgl__lit_colours(ctx, st, v, idx, lit);
@@ -586,7 +648,7 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
                 double c[4];
                 for (int i = 0; i < 4; i++)
                     c[i] = lit[f][QGL__LIT_FLOATS * i + k];
-                double r = range_residual(n, c);
+                double r = range_residual(n, sn, c);
                 if (k < 4)
                     pri = fmax(pri, r);
                 else
@@ -595,11 +657,11 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
             colour = fmax(colour, pri + sec);
         }
     } else if ((v->mask & QGL__A_COLOR) && smooth)
-        colour += residual(n, v->col, 4, idx, 1);
+        colour += residual(n, sn, v->col, 4, idx, 1);
     if ((v->mask & QGL__A_COLOR2) && smooth && (st->ffp.flags & QGL__KF_COLOR_SUM))
-        colour += residual(n, v->col2, 3, idx, 1);
+        colour += residual(n, sn, v->col2, 3, idx, 1);
     if ((v->mask & QGL__A_FOG) && st->fog_slope > 0)
-        colour += residual(n, v->fog, 1, idx, 0) * st->fog_slope;
+        colour += residual(n, sn, v->fog, 1, idx, 0) * st->fog_slope;
     double limit = colour > 0 ? SPLIT_COLOUR * scale / colour : INFINITY;
     for (int u = 0; u < st->ffp.nunits; u++) {
         const qgl__unit_key *uk = &st->ffp.unit[u];
@@ -607,7 +669,7 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
             continue;
         if (uk->env == QGL__E_COMBINE)
             return 0;
-        double texels = texel_residual(st, v, idx, n, u);
+        double texels = texel_residual(st, v, idx, n, sn, u);
         if (texels > 0) {
             double l = SPLIT_TEXEL * scale / texels;
             limit = l < limit ? l : limit;
@@ -634,16 +696,28 @@ static int skip_lit_test(qgl_context *ctx, double area_px)
  * interpolation AUTO's smooth path draws (weighed in the quad's plane): the gain its samples
  * find within qgl__gain_limit along the corners' clip dependency. */
 static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
-                           const double *clip[4])
+                           const double *clip[4], const double px[4][2], const double p[4][3])
 {
-    double n[4], p[4][3];
-    int lit = st->lit_cpu && (st->nonaffine || st->pv_material);
-    if (lit && skip_lit_test(ctx, bbox_area_px(clip, st->viewport)))
+    double n[4], m[4], limit = 0, len2;
+    int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0;
+    if (lit && skip_lit_test(ctx, bbox_area_px(px)))
         return 0;
-    if (!dependency(clip, n) || !object_corners(v, idx, p))
-        return 0;
-    double limit = qgl__gain_limit(ctx, st, v, idx, n);
-    int invisible = limit > 0 && gain_within(clip, st->viewport, n, limit, (const double(*)[3])p);
+    if (object_dependency(p, m) && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
+        /* the first bound, |delta| <= 1 / max |n_i| on a convex quad, for any scale of n: from
+         * the object-space n, with no screen work, for most quads that pass */
+        double nmax = 0;
+        for (int i = 0; i < 4; i++)
+            nmax = fabs(m[i]) > nmax ? fabs(m[i]) : nmax;
+        if (limit * nmax >= 1)
+            invisible = 1;
+        else if (limit * nmax >= 0.125 && (len2 = dependency(clip, n)) > 0) {
+            /* the samples (which find about a quarter of the bound: below an eighth they
+             * could not pass), in clip space: n = s m there, and the limit is m's over |s| */
+            double nm = n[0] * m[0] + n[1] * m[1] + n[2] * m[2] + n[3] * m[3];
+            double mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3];
+            invisible = nm * nm >= 0.999 * len2 * mm && gain_within(px, clip, n, len2, limit * mm / fabs(nm), p);
+        }
+    }
     if (lit) {
         ctx->lit_tested++, ctx->lit_passed += (unsigned)invisible;
         if (ctx->lit_tested >= 512) /* a recent rate: older quads count half at each halving */
@@ -666,6 +740,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
 {
     size_t idx[4];
     const double *clip[4];
+    double px[4][2];
     int external = 0, behind = 0, outside = 0;
     for (int c = 0; c < 4; c++) {
         idx[c] = qgl__corner(topo, q, c);
@@ -685,11 +760,13 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         planar = object_corners(v, idx, p) && qgl__planar(p);
         return !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q) ? QGL__P_GRID : QGL__P_SUBDIV;
     }
+    if (!external)
+        pixel_corners(clip, st->viewport, px);
     if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
-        bbox_area_px(clip, st->viewport) < ctx->invisible_area_px)
+        bbox_area_px(px) < ctx->invisible_area_px)
         return QGL__P_SPLIT | QGL__P_EITHER;
     int auto_ = ctx->method == QGL_METHOD_AUTO;
-    int exact = quad_exact(ctx, st, v, idx, clip, auto_ && !external, facts, q, &planar);
+    int exact = quad_exact(ctx, st, v, idx, clip, px, auto_ && !external, facts, q, &planar);
     if (auto_ && exact)
         return QGL__P_SPLIT | QGL__P_EITHER;
     if (!st->modelled || (!planar && st->polygon_offset))
