@@ -124,6 +124,15 @@ QGL_API int qgl_bloomenthal_affine(const double *geom, int dim_g, const double *
  * object space over it (corner 3's attributes are the affine image of corners 0..2's). attr
  * holds nattr floats per corner. Relative tolerance rel_tol. */
 QGL_API int qgl_split_is_exact(const double p[4][3], const double *attr, int nattr, double rel_tol);
+/* The affine dependency of a planar quad's corners: n with sum n_i p_i = 0 and sum n_i = 0,
+ * from where the diagonals' lines cross, p0 + t (p2 - p0) = p1 + u (p3 - p1): n = (1 - t,
+ * u - 1, t, -u). It is what the split's weights and any other pair of interpolants exact on
+ * affine functions differ by, up to a factor (the attribute f then errs by that factor times
+ * n . f), and the same up to scale in any projective image of the quad (clip space). Returns
+ * 1 when both t and u lie within (0.01, 0.99), the quad strictly convex; 0 otherwise (n
+ * untouched), and for non-finite input. Planarity is the caller's: combine with
+ * qgl_is_planar (off the plane, the lines' nearest points are taken). */
+QGL_API int qgl_affine_dependency(const double p[4][3], double n[4]);
 
 /* ---- subdivision -------------------------------------------------------------------------- */
 

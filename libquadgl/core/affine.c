@@ -175,6 +175,39 @@ static int attr_affine(const double *attr, int nattr, int i, const double b[3], 
     return 1;
 }
 
+int qgl__affine_dependency(const double p[4][3], double n[4])
+{
+    double d1[3], d2[3], r[3], c[3], a[3], b[3];
+    for (int k = 0; k < 3; k++)
+        d1[k] = p[2][k] - p[0][k], d2[k] = p[3][k] - p[1][k], r[k] = p[1][k] - p[0][k];
+    double e2 = dot_n(d1, d1, 3) + dot_n(d2, d2, 3);
+    if (!(e2 > 1e-140 && e2 < 1e140)) { /* c . c below is of the fourth power: scale to 1 */
+        double e = fabs(d1[0]);
+        for (int k = 0; k < 3; k++)
+            e = qgl__max(e, qgl__max(qgl__max(fabs(d1[k]), fabs(d2[k])), fabs(r[k])));
+        if (!(e > 0 && e < INFINITY))
+            return 0;
+        for (int k = 0; k < 3; k++)
+            d1[k] /= e, d2[k] /= e, r[k] /= e;
+    }
+    cross3(d1, d2, c);
+    cross3(r, d2, a);
+    cross3(r, d1, b);
+    /* t d1 - u d2 = r: crossed with d2 and d1, t c = r x d2 and u c = r x d1 */
+    double cc = dot_n(c, c, 3), tc = dot_n(a, c, 3), uc = dot_n(b, c, 3);
+    if (!(cc > 0 && cc < INFINITY && tc > 0.01 * cc && tc < 0.99 * cc && uc > 0.01 * cc && uc < 0.99 * cc))
+        return 0; /* also NaN: every comparison fails */
+    double t = tc / cc, u = uc / cc;
+    n[0] = 1 - t, n[1] = u - 1, n[2] = t, n[3] = -u;
+    return 1;
+}
+
+/* The planner's per-quad call: hidden, so the library calls it directly. */
+QGL_API int qgl_affine_dependency(const double p[4][3], double n[4])
+{
+    return qgl__affine_dependency(p, n);
+}
+
 QGL_API int qgl_split_is_exact(const double p[4][3], const double *attr, int nattr, double rel_tol)
 {
     if (nattr < 0 || (nattr > 0 && !attr) || !(rel_tol >= 0) || !qgl__all_finite(&p[0][0], 12))

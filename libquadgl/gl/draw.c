@@ -463,30 +463,6 @@ static double dependency(const double *clip[4], double n[4])
     return len2 > 0 && len2 < INFINITY ? len2 : 0;
 }
 
-/* n in object space, where a planar quad's dependency is the same up to scale (clip positions
- * are a linear map of (x, y, z, 1)): the diagonals cross at p0 + t (p2 - p0) = p1 + u (p3 - p1),
- * so (1 - t) p0 + (u - 1) p1 + t p2 - u p3 = 0 with coefficients summing to 0. 0 unless both
- * fractions are within (0.01, 0.99): the quad strictly convex in its plane, and therefore on
- * screen when every corner is in front of the eye. */
-static int object_dependency(const double p[4][3], double n[4])
-{
-    double d1[3], d2[3], r[3];
-    for (int k = 0; k < 3; k++)
-        d1[k] = p[2][k] - p[0][k], d2[k] = p[3][k] - p[1][k], r[k] = p[1][k] - p[0][k];
-    double c[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
-    double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    /* t = ((r x d2) . c) / cc, u = ((r x d1) . c) / cc, as triple products */
-    double a = c[0] * (r[1] * d2[2] - r[2] * d2[1]) + c[1] * (r[2] * d2[0] - r[0] * d2[2]) +
-               c[2] * (r[0] * d2[1] - r[1] * d2[0]);
-    double b = c[0] * (r[1] * d1[2] - r[2] * d1[1]) + c[1] * (r[2] * d1[0] - r[0] * d1[2]) +
-               c[2] * (r[0] * d1[1] - r[1] * d1[0]);
-    if (!(cc > 0 && cc < INFINITY && a > 0.01 * cc && a < 0.99 * cc && b > 0.01 * cc && b < 0.99 * cc))
-        return 0;
-    double t = a / cc, u = b / cc;
-    n[0] = 1 - t, n[1] = u - 1, n[2] = t, n[3] = -u;
-    return 1;
-}
-
 /* Whether the screen quad v is strictly convex: its diagonals cross inside both, at fractions
  * within (0.01, 0.99) of each; *t the fraction along the diagonal from corner 0, when asked
  * (a division, which most calls do not need). */
@@ -607,7 +583,11 @@ static double texel_residual(const qgl__state *st, const qgl__verts *v, const si
         return 0; /* the current coordinates: constant */
     double t[4][4];
     for (int c = 0; c < 4; c++) {
-        transform(st->texmat[u], v->tex[u] + 4 * idx[c], t[c]);
+        const float *s = v->tex[u] + 4 * idx[c];
+        if (st->texmat_identity & (1u << u))
+            t[c][0] = s[0], t[c][1] = s[1], t[c][2] = s[2], t[c][3] = s[3];
+        else
+            transform(st->texmat[u], s, t[c]);
         if (!(t[c][3] > 0) || fabs(t[c][3] - t[0][3]) > 1e-6 * t[0][3])
             return INFINITY;
     }
@@ -702,7 +682,7 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
     int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0;
     if (lit && skip_lit_test(ctx, bbox_area_px(px)))
         return 0;
-    if (object_dependency(p, m) && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
+    if (qgl__affine_dependency(p, m) && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
         /* the first bound, |delta| <= 1 / max |n_i| on a convex quad, for any scale of n: from
          * the object-space n, with no screen work, for most quads that pass */
         double nmax = 0;

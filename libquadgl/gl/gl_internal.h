@@ -429,6 +429,8 @@ typedef struct qgl__state {
     double mvp[16];           /* projection * modelview, column-major */
     double modelview[16];
     double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
+    unsigned texmat_identity; /* bit u: unit u's texture matrix is the identity (the usual case:
+                                 the planner reads the coordinates as they are) */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
     int tex_replace;          /* env mode REPLACE (else MODULATE) */
     int tex_no_alpha;         /* the texture's base format has no alpha (REPLACE keeps Af) */
@@ -657,6 +659,8 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
  * within what rounding the corners to float can do (a small quad far from the origin, as a
  * fine sphere's, is planar only to its coordinates' precision). */
 int qgl__planar(const double p[4][3]);
+/* qgl_affine_dependency, hidden (core/affine.c): called per quad without the PLT. */
+int qgl__affine_dependency(const double p[4][3], double n[4]);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
 /* state.c: the owner will mark every change of the groups from now on; a group changed. */
 void qgl__state_track(qgl_context *ctx);

@@ -497,12 +497,15 @@ static void query_xform(qgl_context *ctx, qgl__state *st)
     gl->GetDoublev(GL_MODELVIEW_MATRIX, st->modelview);
     gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
     mat_mul(pr, st->modelview, st->mvp);
+    static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     int switched = 0;
+    st->texmat_identity = 0;
     for (int u = 0; u < st->ffp.nunits; u++) {
         if (!st->ffp.unit[u].target)
             continue;
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
         gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
+        st->texmat_identity |= memcmp(st->texmat[u], identity, sizeof identity) == 0 ? 1u << u : 0;
         switched = 1;
     }
     if (switched)

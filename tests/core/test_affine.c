@@ -185,6 +185,69 @@ static void check_split_exact(void)
     CHECK(qgl_split_is_exact(trap, NULL, 0, 1e-12), "no attributes: planar quad rejected");
 }
 
+/* Cofactors of the corners' (x, y, w): the dependency of a projected quad. */
+static void clip_dependency(const double c[4][4], double n[4])
+{
+    for (int i = 0; i < 4; i++) {
+        const double *a = c[(i + 1) & 3], *b = c[(i + 2) & 3], *d = c[(i + 3) & 3];
+        double det = a[0] * (b[1] * d[3] - b[3] * d[1]) - a[1] * (b[0] * d[3] - b[3] * d[0]) +
+                     a[3] * (b[0] * d[1] - b[1] * d[0]);
+        n[i] = (i & 1) ? -det : det; /* cyclic order: the sign alternates for the odd corners */
+    }
+}
+
+static void check_dependency(void)
+{
+    const double scales[3][2] = {{1, 0}, {1e-4, 1e6}, {1e100, 0}};
+    for (int sc = 0; sc < 3; sc++)
+        for (int it = 0; it < 500; it++) {
+            double q[4][2], p[4][3], f[3][3], n[4];
+            random_quad2(q);
+            embed(q, scales[sc][0], scales[sc][1], sc == 1, p, f);
+            CHECK(qgl_affine_dependency(p, n), "convex quad has no dependency (scale %g)", scales[sc][0]);
+            double sum = n[0] + n[1] + n[2] + n[3], worst = 0;
+            for (int k = 0; k < 3; k++) {
+                double s = 0;
+                for (int i = 0; i < 4; i++)
+                    s += n[i] * (p[i][k] - p[0][k]);
+                worst = fmax(worst, fabs(s) / scales[sc][0]);
+            }
+            CHECK(fabs(sum) < 1e-12 && worst < 1e-8, "dependency off: sum %g, residual %g (scale %g)", sum, worst,
+                  scales[sc][0]);
+            if (sc)
+                continue;
+            /* a random projective image (a camera): the cofactors there are parallel to n */
+            double m[4][4], c[4][4], nc[4];
+            for (int r = 0; r < 4; r++)
+                for (int k = 0; k < 4; k++)
+                    m[r][k] = (r == k) + 0.4 * urand();
+            m[3][3] += 3; /* w > 0 over the quad */
+            for (int i = 0; i < 4; i++)
+                for (int r = 0; r < 4; r++)
+                    c[i][r] = m[r][0] * p[i][0] + m[r][1] * p[i][1] + m[r][2] * p[i][2] + m[r][3];
+            clip_dependency(c, nc);
+            double nn = 0, cc = 0, dot = 0;
+            for (int i = 0; i < 4; i++)
+                nn += n[i] * n[i], cc += nc[i] * nc[i], dot += n[i] * nc[i];
+            CHECK(dot * dot >= (1 - 1e-9) * nn * cc, "clip-space dependency not parallel: cos^2 %.12f",
+                  dot * dot / (nn * cc));
+        }
+    /* t = 2/7, u = 4/7 */
+    const double quad[4][3] = {{0, 0, 0}, {2, 0, 0}, {3, 2, 0}, {0, 1, 0}}, want[4] = {5 / 7., -3 / 7., 2 / 7., -4 / 7.};
+    double n[4];
+    CHECK(qgl_affine_dependency(quad, n), "irregular quad has no dependency");
+    for (int i = 0; i < 4; i++)
+        CHECK(fabs(n[i] - want[i]) < 1e-15, "irregular quad: n[%d] = %.17g, want %.17g", i, n[i], want[i]);
+    const double dart[4][3] = {{0, 0, 0}, {2, 0, 0}, {0.5, 0.5, 0}, {0, 2, 0}};
+    const double bowtie[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    const double line[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    const double nan[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, NAN, 0}, {0, 1, 0}};
+    CHECK(!qgl_affine_dependency(dart, n), "concave quad given a dependency");
+    CHECK(!qgl_affine_dependency(bowtie, n), "bow-tie given a dependency");
+    CHECK(!qgl_affine_dependency(line, n), "collinear quad given a dependency");
+    CHECK(!qgl_affine_dependency(nan, n), "NaN given a dependency");
+}
+
 int main(void)
 {
     srand(777);
@@ -192,6 +255,7 @@ int main(void)
     check_parallelogram();
     check_bloomenthal();
     check_split_exact();
+    check_dependency();
     printf("%d failures\n", failures);
     return failures ? 1 : 0;
 }
