@@ -283,7 +283,7 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
     long over = 0;
     if (method == QGL_METHOD_AUTO)
         against_mvc(q, method, f, &worst, &over);
-    printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.1f) %-6s cpu ratio %5.2f | per frame: "
+    printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.2f) %-6s cpu ratio %5.2f | per frame: "
            "mvc %.0f split %.0f grid %.0f fallback %.0f draws %.0f",
            name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
            st.mvc / per, st.split / per, st.subdiv / per, st.fallback / per, st.draws / per);
