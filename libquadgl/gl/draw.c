@@ -678,23 +678,31 @@ static int skip_lit_test(qgl_context *ctx, double area_px)
 static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
                            const double *clip[4], const double px[4][2], const double p[4][3])
 {
-    double n[4], m[4], limit = 0, len2;
-    int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0;
+    double n[4], m[4], limit = 0, len2 = 0;
+    int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0, ok;
     if (lit && skip_lit_test(ctx, bbox_area_px(px)))
         return 0;
-    if (qgl__affine_dependency(p, m) && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
-        /* the first bound, |delta| <= 1 / max |n_i| on a convex quad, for any scale of n: from
-         * the object-space n, with no screen work, for most quads that pass */
+    float w0 = v->pos[4 * idx[0] + 3];
+    if (v->pos[4 * idx[1] + 3] == w0 && v->pos[4 * idx[2] + 3] == w0 && v->pos[4 * idx[3] + 3] == w0)
+        ok = qgl__affine_dependency(p, m); /* clip positions are one factor times M (p, 1) */
+    else { /* the rasterizer weighs the corners by their own w: the dependency is the clip one */
+        ok = (len2 = dependency(clip, m)) > 0 && crossing(px, NULL);
+        memcpy(n, m, sizeof n);
+    }
+    if (ok && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
+        /* the first bound, |delta| <= 1 / max |n_i| on a convex quad, for any scale of n:
+         * from the object-space n, with no screen work, for most quads that pass */
         double nmax = 0;
         for (int i = 0; i < 4; i++)
             nmax = fabs(m[i]) > nmax ? fabs(m[i]) : nmax;
         if (limit * nmax >= 1)
             invisible = 1;
-        else if (limit * nmax >= 0.125 && (len2 = dependency(clip, n)) > 0) {
+        else if (limit * nmax >= 0.125 && (len2 > 0 || (len2 = dependency(clip, n)) > 0)) {
             /* the samples (which find about a quarter of the bound: below an eighth they
              * could not pass), in clip space: n = s m there, and the limit is m's over |s| */
-            double nm = n[0] * m[0] + n[1] * m[1] + n[2] * m[2] + n[3] * m[3];
-            double mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3];
+            double nm = 0, mm = 0;
+            for (int i = 0; i < 4; i++)
+                nm += n[i] * m[i], mm += m[i] * m[i];
             invisible = nm * nm >= 0.999 * len2 * mm && gain_within(px, clip, n, len2, limit * mm / fabs(nm), p);
         }
     }

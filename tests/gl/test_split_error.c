@@ -17,6 +17,7 @@
  * two-sided, split (more than half) within 1/255 of MVC_PLANE, also after a run of quads that
  * failed (the planner then judges only some); normals that alternate from vertex to vertex
  * never split; with the budget 1000 times larger they do and the pictures part.
+ * Corners given with their own w (glVertex4f) are held to the same picture.
  * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
  * the planner judges every lit quad rather than leave some untested where this machine's
  * calibration says judging would not pay. */
@@ -29,7 +30,7 @@
 
 enum { W = 256, H = 256, N = 16, NV = 4 * N * N };
 
-static float pos[NV][3], col[NV][4], tex[NV][2], nrm[NV][3];
+static float pos[NV][3], col[NV][4], tex[NV][2], nrm[NV][3], hpos[NV][4];
 
 /* Corner attributes at (x, y) of the plane z = 0, [-1, 1]^2; k scales the bilinear term (of
  * blue: 0.5 + k x y); k_col < 0 makes blue a checker of the vertices instead (0 or 1). */
@@ -66,10 +67,23 @@ static void normals(double k)
     }
 }
 
+/* Positions given as (w x, w y, w z, w), w varying over the grid: the rasterizer weighs each
+ * corner by its clip w, which includes this w. */
+static int homogeneous;
+
 static qgl_quad_batch batch(int textured)
 {
     qgl_quad_batch b = {.topology = QGL_QUADS, .count = NV};
     b.position = (qgl_attrib){pos, 3, 0, 0};
+    if (homogeneous) {
+        for (int i = 0; i < NV; i++) {
+            float w = 0.5f + 1.5f * (pos[i][0] + 1) * (pos[i][1] + 2) / 6;
+            for (int k = 0; k < 3; k++)
+                hpos[i][k] = w * pos[i][k];
+            hpos[i][3] = w;
+        }
+        b.position = (qgl_attrib){hpos, 4, 0, 0};
+    }
     b.color = (qgl_attrib){col, 4, 0, 0};
     b.normal = (qgl_attrib){nrm, 3, 0, 0};
     if (textured)
@@ -251,6 +265,13 @@ int main(void)
     th_check(split >= N * N * 3 / 4, "colour: only %d of %d quads split", split, N * N);
     split = compare(&t, "colour, invisible, retained", 0, 1, 0, 1);
     th_check(split >= N * N * 3 / 4, "colour, retained: only %d of %d quads split", split, N * N);
+    /* corners with their own w keep the test in clip space (the object-space bound assumes
+     * one w for the four): whatever splits must still draw the shader path's picture */
+    homogeneous = 1;
+    grid(0.05, 0);
+    compare(&t, "colour, own w", 0, 1, 0, 0);
+    homogeneous = 0;
+    grid(0.15, 0);
     qgl_gl_set_split_error(t.qgl, -1);
     split = compare(&t, "colour, rule off", 0, 1, 0, 0);
     th_check(split == 0, "split_error < 0: %d quads split", split);
