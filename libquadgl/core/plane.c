@@ -35,6 +35,7 @@
 #define FABS fabs
 #define FREXP frexp
 #define LDEXP ldexp
+#define RMIN DBL_MIN
 #define ISFINITE isfinite
 #include "plane_impl.h"
 #undef R
@@ -46,6 +47,7 @@
 #undef FABS
 #undef FREXP
 #undef LDEXP
+#undef RMIN
 
 #define R float
 #define PLANE qgl_planef
@@ -56,6 +58,7 @@
 #define FABS fabsf
 #define FREXP frexpf
 #define LDEXP ldexpf
+#define RMIN FLT_MIN
 #include "plane_impl.h"
 
 QGL_API int qgl_plane_frame(const double pos[4][3], qgl_plane *out)

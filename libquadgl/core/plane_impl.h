@@ -2,8 +2,10 @@
  *
  * plane.c includes this file twice with R (the real type), PLANE (the frame's struct type),
  * FN(name) (the suffixed function name), EPS (the type's unit roundoff), BIG (the type's
- * largest value over 64), SQRT, FABS, FREXP, LDEXP and ISFINITE. See plane.c for the
- * algorithm. */
+ * largest value over 64), RMIN (its smallest normal number), SQRT, FABS, FREXP, LDEXP and
+ * ISFINITE. See plane.c for the algorithm. */
+
+#include "pow2_impl.h"
 
 static R FN(dot)(const R a[3], const R b[3])
 {
@@ -130,9 +132,7 @@ static int FN(frame)(const R pos[4][3], PLANE *out)
         return QGL_DEGENERATE;
     int e;
     FREXP(m, &e);
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 3; k++)
-            d[i][k] = LDEXP(d[i][k], -e);
+    FN(scale_pow2)(&d[0][0], 12, e);
     R len = SQRT(FN(normal)((const R(*)[3])d, n));
     int degenerate = !(len > 64 * EPS);
     if (degenerate) {
@@ -191,8 +191,8 @@ static void FN(scale_all)(const R pos[4][3], const R p[3], R spos[4][3], R sp[3]
     int e = 0;
     if (m > 0)
         FREXP(m, &e);
-    for (int k = 0; k < 3; k++)
-        sp[k] = LDEXP(p[k], -e);
-    for (int i = 0; i < 12; i++)
-        spos[i / 3][i % 3] = LDEXP(pos[i / 3][i % 3], -e);
+    memcpy(sp, p, 3 * sizeof(R));
+    memcpy(spos, pos, 12 * sizeof(R));
+    FN(scale_pow2)(sp, 3, e);
+    FN(scale_pow2)(&spos[0][0], 12, e);
 }

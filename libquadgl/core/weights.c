@@ -29,6 +29,7 @@
 #define FABS fabs
 #define FREXP frexp
 #define LDEXP ldexp
+#define RMIN DBL_MIN
 #define ISFINITE isfinite
 #define SPLITTER 134217729.0 /* 2^27 + 1 */
 #include "weights_impl.h"
@@ -39,6 +40,7 @@
 #undef FABS
 #undef FREXP
 #undef LDEXP
+#undef RMIN
 #undef SPLITTER
 
 #define R float
@@ -48,6 +50,7 @@
 #define FABS fabsf
 #define FREXP frexpf
 #define LDEXP ldexpf
+#define RMIN FLT_MIN
 #define SPLITTER 4097.0f /* 2^12 + 1 */
 #include "weights_impl.h"
 

@@ -1,8 +1,11 @@
 /* weights_impl.h: the weight computation, written once and instantiated for double and float.
  *
  * weights.c includes this file twice with R (the real type), FN(name) (the suffixed function
- * name), EPS (the type's unit roundoff), SQRT, FABS, ISFINITE and SPLITTER (Veltkamp's
- * constant 2^ceil(p/2) + 1). See weights.c for the algorithm and its limits. */
+ * name), EPS (the type's unit roundoff), SQRT, FABS, FREXP, LDEXP, RMIN (the type's smallest
+ * normal number), ISFINITE and SPLITTER (Veltkamp's constant 2^ceil(p/2) + 1). See weights.c
+ * for the algorithm and its limits. */
+
+#include "pow2_impl.h"
 
 /* x - p * w rounded once: the product is made exact with Dekker's two-product, so a point
  * close to a corner keeps all its relative precision in s~ = x - p w (plain arithmetic
@@ -42,9 +45,7 @@ static int FN(normalize)(const R clip[4][4], R h[4][3])
         return 0;
     int e;
     FREXP(m, &e);
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 3; k++)
-            h[i][k] = LDEXP(h[i][k], -e);
+    FN(scale_pow2)(&h[0][0], 12, e);
     return 1;
 }
 
@@ -193,9 +194,8 @@ static int FN(weights)(const R clip[4][4], R px, R py, R persp[4], R screen[4])
         return QGL_DEGENERATE;
     int e;
     FREXP(smax, &e);
+    FN(scale_pow2)(&s[0][0], 8, e);
     for (int i = 0; i < 4; i++) {
-        s[i][0] = LDEXP(s[i][0], -e);
-        s[i][1] = LDEXP(s[i][1], -e);
         rho[i] = SQRT(s[i][0] * s[i][0] + s[i][1] * s[i][1]);
         rsum += rho[i];
     }

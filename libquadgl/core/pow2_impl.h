@@ -1,0 +1,18 @@
+/* pow2_impl.h: exact scaling by a power of two, for the typed implementation headers
+ * (weights_impl.h, plane_impl.h), with their R, FN, LDEXP and RMIN (the type's smallest
+ * normal number). */
+
+/* a[i] = LDEXP(a[i], -e) for n values, by one multiplication each where 2^-e is a normal
+ * number (the product is then the same correctly rounded value): a library call per value
+ * costs more than the arithmetic it guards. */
+static void FN(scale_pow2)(R *a, int n, int e)
+{
+    R s = LDEXP((R)1, -e);
+    if (s >= RMIN && s <= 1 / RMIN) {
+        for (int i = 0; i < n; i++)
+            a[i] *= s;
+    } else {
+        for (int i = 0; i < n; i++)
+            a[i] = LDEXP(a[i], -e);
+    }
+}
