@@ -15,10 +15,10 @@
 /* Orientations of normalized points at or below this are treated as zero (collinear). */
 #define QGL__COLLINEAR_EPS (64.0 * DBL_EPSILON)
 
-/* max and min of finite values (fmax and fmin are library calls here: they must order NaNs) */
 /* qgl_affine_dependency, hidden: the GL layer's planner calls it per quad (gl_internal.h). */
 int qgl__affine_dependency(const double p[4][3], double n[4]);
 
+/* max and min of finite values (fmax and fmin are library calls here: they must order NaNs) */
 static inline double qgl__max(double a, double b)
 {
     return a > b ? a : b;

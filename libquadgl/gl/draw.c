@@ -64,7 +64,6 @@ static void transform_all(const double m[16], const float *p, size_t n, double *
     }
 }
 
-static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
 /* Attributes per corner the affinity test may see: colour, secondary, fog, 4 units. */
 #define QGL__ATTR_MAX (4 + 3 + 1 + 4 * QGL_MAX_TEXUNITS)
@@ -157,7 +156,7 @@ static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_
                 continue;
             }
             double t[4];
-            transform(st->ffp.unit[u].target ? st->texmat[u] : identity, src, t);
+            transform(st->ffp.unit[u].target ? st->texmat[u] : qgl__identity, src, t);
             for (int j = 0; j < 4; j++)
                 a[k++] = t[j];
         }
@@ -691,7 +690,7 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
     }
     if (ok && (limit = qgl__gain_limit(ctx, st, v, idx, m)) > 0) {
         /* the first bound, |delta| <= 1 / max |n_i| on a convex quad, for any scale of n:
-         * from the object-space n, with no screen work, for most quads that pass */
+         * from m, with no screen work where the corners share one w (most quads) */
         double nmax = 0;
         for (int i = 0; i < 4; i++)
             nmax = fabs(m[i]) > nmax ? fabs(m[i]) : nmax;
@@ -748,12 +747,11 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         planar = object_corners(v, idx, p) && qgl__planar(p);
         return !external && qgl__grid_plan(ctx, st, v, idx, clip, planar, q) ? QGL__P_GRID : QGL__P_SUBDIV;
     }
-    if (!external)
-        pixel_corners(clip, st->viewport, px);
-    if (ctx->method == QGL_METHOD_AUTO && !external && !st->pv_material &&
-        bbox_area_px(px) < ctx->invisible_area_px)
-        return QGL__P_SPLIT | QGL__P_EITHER;
     int auto_ = ctx->method == QGL_METHOD_AUTO;
+    if (auto_ && !external) /* the bounding box and the invisible split's samples measure them */
+        pixel_corners(clip, st->viewport, px);
+    if (auto_ && !external && !st->pv_material && bbox_area_px(px) < ctx->invisible_area_px)
+        return QGL__P_SPLIT | QGL__P_EITHER;
     int exact = quad_exact(ctx, st, v, idx, clip, px, auto_ && !external, facts, q, &planar);
     if (auto_ && exact)
         return QGL__P_SPLIT | QGL__P_EITHER;

@@ -662,6 +662,8 @@ int qgl__planar(const double p[4][3]);
 /* qgl_affine_dependency, hidden (core/affine.c): called per quad without the PLT. */
 int qgl__affine_dependency(const double p[4][3], double n[4]);
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
+/* state.c: the 4 x 4 identity, column-major (texture matrices are compared with it). */
+extern const double qgl__identity[16];
 /* state.c: the owner will mark every change of the groups from now on; a group changed. */
 void qgl__state_track(qgl_context *ctx);
 void qgl__state_dirty(qgl_context *ctx, unsigned groups);

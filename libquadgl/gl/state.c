@@ -488,6 +488,8 @@ static int query_bound(qgl_context *ctx, qgl__state *st)
     return ok;
 }
 
+const double qgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
 /* Matrices (texture matrices of the units the key enables) and the viewport. */
 static void query_xform(qgl_context *ctx, qgl__state *st)
 {
@@ -497,7 +499,6 @@ static void query_xform(qgl_context *ctx, qgl__state *st)
     gl->GetDoublev(GL_MODELVIEW_MATRIX, st->modelview);
     gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
     mat_mul(pr, st->modelview, st->mvp);
-    static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     int switched = 0;
     st->texmat_identity = 0;
     for (int u = 0; u < st->ffp.nunits; u++) {
@@ -505,7 +506,7 @@ static void query_xform(qgl_context *ctx, qgl__state *st)
             continue;
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
         gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
-        st->texmat_identity |= memcmp(st->texmat[u], identity, sizeof identity) == 0 ? 1u << u : 0;
+        st->texmat_identity |= memcmp(st->texmat[u], qgl__identity, sizeof qgl__identity) == 0 ? 1u << u : 0;
         switched = 1;
     }
     if (switched)
