@@ -130,12 +130,14 @@ static void sphere_vertex(int native, int i, int j, int nu, int nv)
     V3(native)((float)(cos(ph) * cos(th)), (float)(cos(ph) * sin(th)), (float)sin(ph));
 }
 
-/* Textured latitude/longitude sphere, 48 x 24 quads. */
+/* Textured latitude/longitude sphere, 48 x 24 quads, white (the texture as it is: the colour
+ * the cases before left current would modulate it, black after the full-screen quad's). */
 static void sphere(int native)
 {
     enum { NU = 48, NV = 24 };
     glEnable(GL_TEXTURE_2D);
     glEnable(GL_DEPTH_TEST);
+    C4(native)(1, 1, 1, 1);
     B(native)(GL_QUADS);
     for (int j = 0; j < NV; j++)
         for (int i = 0; i < NU; i++) {

@@ -192,6 +192,7 @@ QGL_API void qgl_gl_destroy(qgl_context *ctx)
     qgl__verts_free(&ctx->unrolled);
     qgl__verts_free(&ctx->grouped);
     free(ctx->grouped_clip);
+    free(ctx->grouped_to);
     free(ctx->unrolled_facts);
     qgl__verts_free(&ctx->pend);
     free(ctx->multi_first);

@@ -1313,7 +1313,8 @@ static int replayed(const qgl_context *ctx, unsigned char path, unsigned flags)
 /* Where drawing order cannot show (st->order_free), a batch's quads are drawn grouped by path,
  * stably: one draw per path instead of one per change of path (a lathed surface alternates
  * planar and non-planar quads, a sphere's clipped and unclipped ones). The vertices, their
- * clip positions and the paths are permuted; 0 when that saves no draw or without memory. */
+ * clip positions, the paths and the grids planned are permuted; 0 when that saves no draw or
+ * without memory. */
 static int group_by_path(qgl_context *ctx, const qgl__verts *v, size_t nq)
 {
     size_t runs = 1, kinds = 0, count[256] = {0}, start[256], at = 0;
@@ -1324,12 +1325,17 @@ static int group_by_path(qgl_context *ctx, const qgl__verts *v, size_t nq)
     }
     qgl__verts *g = &ctx->grouped;
     if (runs <= kinds || !qgl__verts_reserve(g, 4 * nq, v->mask) ||
-        !ensure((void **)&ctx->grouped_clip, &ctx->grouped_clip_cap, 16 * nq, sizeof(double)))
+        !ensure((void **)&ctx->grouped_clip, &ctx->grouped_clip_cap, 16 * nq, sizeof(double)) ||
+        !ensure((void **)&ctx->grouped_to, &ctx->grouped_to_cap, nq, sizeof(size_t)))
         return 0;
     for (int p = 0; p < 256; p++)
         start[p] = at, at += count[p];
+    for (size_t q = 0; q < nq; q++)
+        ctx->grouped_to[q] = start[path[q]]++;
+    if (!qgl__grid_regroup(ctx, path, ctx->grouped_to, nq))
+        return 0;
     for (size_t q = 0; q < nq; q++) {
-        size_t d = start[path[q]]++;
+        size_t d = ctx->grouped_to[q];
         qgl__verts_copy_range(g, 4 * d, v, 4 * q, 4);
         memcpy(ctx->grouped_clip + 16 * d, ctx->clip + 16 * q, 16 * sizeof(double));
     }

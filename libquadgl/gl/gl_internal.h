@@ -565,6 +565,8 @@ struct qgl_context {
     qgl__verts grouped;       /* draw.c: a batch's quads grouped by path */
     double *grouped_clip;
     size_t grouped_clip_cap;
+    size_t *grouped_to;       /* where each quad went */
+    size_t grouped_to_cap;
     uint16_t *unrolled_facts;
     size_t unrolled_facts_cap;
     double *clip;             /* 4 per vertex */
@@ -802,6 +804,9 @@ int qgl__grid_plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
 int qgl__grid_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q0,
                    size_t nq, GLint *bound);
 void qgl__grid_free(qgl_context *ctx);
+/* The batch's quads are drawn in another order (draw.c's grouping by path): quad q moves to
+ * to[q], and the grid planned for it goes with it. 0 without memory (nothing moved). */
+int qgl__grid_regroup(qgl_context *ctx, const unsigned char *path, const size_t *to, size_t nq);
 /* subdiv.c, for the calibration: draw quads of v (QGL_QUADS; their clip positions in
  * ctx->clip) each as grid number g; draw v's positions and colours as they are in mode. */
 int qgl__grid_draw_all(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, int g);

@@ -42,6 +42,8 @@ struct qgl__grid {
     GLuint vao;            /* ours: its arrays point into the stream buffer */
     unsigned char *k;      /* per quad of the batch: the grid chosen */
     size_t k_cap;
+    unsigned char *moved;  /* the same after qgl__grid_regroup, swapped in */
+    size_t moved_cap;
     float *verts;
     size_t verts_cap;      /* floats */
     uint32_t *idx;
@@ -83,10 +85,28 @@ void qgl__grid_free(qgl_context *ctx)
     if (!ctx->gl_gone)
         ctx->gl.DeleteVertexArrays(1, &g->vao);
     free(g->k);
+    free(g->moved);
     free(g->verts);
     free(g->idx);
     free(g);
     ctx->grid = NULL;
+}
+
+int qgl__grid_regroup(qgl_context *ctx, const unsigned char *path, const size_t *to, size_t nq)
+{
+    struct qgl__grid *gr = ctx->grid;
+    if (!gr)
+        return 1; /* no quad took the grid */
+    if (!grow((void **)&gr->moved, &gr->moved_cap, nq, 1))
+        return 0;
+    for (size_t q = 0; q < nq; q++)
+        if ((path[q] & QGL__P_KIND) == QGL__P_GRID)
+            gr->moved[to[q]] = gr->k[q];
+    unsigned char *k = gr->k;
+    size_t cap = gr->k_cap;
+    gr->k = gr->moved, gr->k_cap = gr->moved_cap;
+    gr->moved = k, gr->moved_cap = cap;
+    return 1;
 }
 
 /* ---- planning ------------------------------------------------------------------------------ */

@@ -10,7 +10,11 @@
  * one drawn as the grid (coarse and fine: little and much colour variation) and the other by
  * the shader path, the split or another grid, with additive blending: every pixel of the
  * union is hit exactly once, and across the shared edge the colour steps by no more than its
- * gradient on either side plus 2 levels. Calibration: a measured calibration is valid only
+ * gradient on either side plus 2 levels. Grouping: with the depth test on, the quads of one
+ * glBegin/glEnd are drawn grouped by path, and each grid planned must move with its quad:
+ * a patchwork alternating gentle colours (a coarse grid), wilder ones (a finer grid) and
+ * non-planar quads (the shader path) in one batch, against MVC_PLANE, no pixel more than one
+ * level apart. Calibration: a measured calibration is valid only
  * within 20 ms of timed draws, and odd given figures (negative) leave the costs invalid, so
  * that AUTO draws a large non-affine quad with the shader path. */
 #include <math.h>
@@ -122,6 +126,59 @@ static void budget(th_ctx *t)
              "behind-the-eye quad");
 }
 
+static void grouped(th_ctx *t)
+{
+    enum { N = 6 };
+    static const double amp[3] = {0.05, 0.4, 1.0};
+    float p[N * N][4][3], col[N * N][4][4];
+    for (int q = 0; q < N * N; q++) {
+        int i = q % N, j = q / N, kind = (i + j) % 3;
+        float x0 = -0.9f + 0.3f * (float)i, y0 = -0.9f + 0.3f * (float)j;
+        const float corner[4][2] = {{x0, y0}, {x0 + 0.27f, y0}, {x0 + 0.25f, y0 + 0.26f}, {x0 + 0.02f, y0 + 0.27f}};
+        for (int c = 0; c < 4; c++) {
+            p[q][c][0] = corner[c][0], p[q][c][1] = corner[c][1];
+            p[q][c][2] = kind == 2 && c == 2 ? 0.1f : 0.0f;
+            for (int k = 0; k < 4; k++)
+                col[q][c][k] = k == 3 ? 1.0f : (float)(0.5 + 0.5 * amp[kind] * sin(1.7 * q + 2.3 * c + 0.9 * k));
+        }
+    }
+    perspective();
+    glEnable(GL_DEPTH_TEST);
+    unsigned char *img[2];
+    qgl_gl_stats_t st;
+    for (int m = 0; m < 2; m++) {
+        qgl_gl_set_method(t->qgl, m ? QGL_METHOD_MVC_PLANE : QGL_METHOD_AUTO);
+        qgl_gl_reset_stats(t->qgl);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        qglBegin(GL_QUADS);
+        for (int q = 0; q < N * N; q++)
+            for (int c = 0; c < 4; c++) {
+                qglColor4fv(col[q][c]);
+                qglVertex3fv(p[q][c]);
+            }
+        qglEnd();
+        glFinish();
+        if (!m)
+            qgl_gl_stats(t->qgl, &st);
+        img[m] = th_snapshot(t);
+    }
+    glDisable(GL_DEPTH_TEST);
+    int worst = 0;
+    long over = 0;
+    for (int i = 0; i < W * H * 4; i++) {
+        int d = abs(img[0][i] - img[1][i]);
+        worst = d > worst ? d : worst;
+        over += d > 1;
+    }
+    printf("grouped: grid %llu, shader path %llu of %d quads; worst difference %d levels, %ld values over 1\n",
+           (unsigned long long)st.subdiv, (unsigned long long)st.mvc, N * N, worst, over);
+    th_check(st.subdiv > 0 && st.mvc > 0, "grouped: the batch did not mix the grid and the shader path");
+    th_check(worst <= 1, "grouped: the grid differs from the shader path by %d levels (%ld values over 1)", worst,
+             over);
+    free(img[0]);
+    free(img[1]);
+}
+
 /* Pixel-exact coverage and colour continuity across the shared edge (near x = 0) of two
  * quads: colours as given, alpha 1/4 accumulated by blending (RGB replaced), so that alpha
  * counts the hits while the paths are those of the colours. */
@@ -224,6 +281,7 @@ int main(void)
         return 77;
     }
     budget(&t);
+    grouped(&t);
     seam(&t, QGL_METHOD_AUTO, QGL_METHOD_MVC, 0.05, 1.0, 0.3f, "grid | shader path");
     seam(&t, QGL_METHOD_AUTO, QGL_METHOD_SPLIT, 1.0, 1.0, 0.3f, "grid | split");
     seam(&t, QGL_METHOD_AUTO, QGL_METHOD_SUBDIV, 0.02, 0.2, 0, "coarse grid | fine grid");
