@@ -250,17 +250,19 @@ static unsigned char *frame_of(qgl_context *q, qgl_method m, frame_fn f)
 }
 
 /* The method's picture against the per-fragment picture of the interpolant auto draws smooth
- * (the view-invariant weights, mvcplane): the largest difference in 8-bit levels and the
- * pixels more than one level apart (the budget is half a level before rounding, so one level
- * is what rounding alone can add). */
-static void against_mvc(qgl_context *q, qgl_method m, frame_fn f, int *worst, long *over)
+ * (the view-invariant weights, mvcplane): the largest difference in 8-bit levels, the values
+ * more than one level apart (the budget is half a level before rounding, so one level is what
+ * rounding alone can add) and the pixels not black in the method's picture (a comparison of
+ * two black pictures holds nothing). */
+static void against_mvc(qgl_context *q, qgl_method m, frame_fn f, int *worst, long *over, long *drawn)
 {
     unsigned char *a = frame_of(q, m, f), *b = frame_of(q, QGL_METHOD_MVC_PLANE, f);
-    *worst = 0, *over = 0;
+    *worst = 0, *over = 0, *drawn = 0;
     for (size_t i = 0; a && b && i < (size_t)W * H * 4; i++) {
         int d = abs(a[i] - b[i]);
         *worst = d > *worst ? d : *worst;
         *over += d > 1;
+        *drawn += i % 4 == 0 && (a[i] | a[i + 1] | a[i + 2]);
     }
     free(a);
     free(b);
@@ -282,15 +284,16 @@ static void report(const char *name, qgl_context *q, qgl_method method, frame_fn
     qgl_gl_stats(q, &st);
     double per = (double)(frames + 1), ratio = t.wall[1] / t.wall[0];
     int worst = 0;
-    long over = 0;
+    long over = 0, drawn = 0;
     if (method == QGL_METHOD_AUTO)
-        against_mvc(q, method, f, &worst, &over);
+        against_mvc(q, method, f, &worst, &over, &drawn);
     printf("%-36s native %7.2f ms  quadgl %7.2f ms  ratio %5.2f (target <= %.2f) %-6s cpu ratio %5.2f | per frame: "
            "mvc %.0f split %.0f grid %.0f fallback %.0f draws %.0f",
            name, t.wall[0], t.wall[1], ratio, target, ratio <= target ? "met" : "MISSED", t.cpu[1] / t.cpu[0],
            st.mvc / per, st.split / per, st.subdiv / per, st.fallback / per, st.draws / per);
     if (method == QGL_METHOD_AUTO)
-        printf(" | vs mvcplane picture: max %d levels, %ld values over 1", worst, over);
+        printf(" | vs mvcplane picture: max %d levels, %ld values over 1, %ld pixels drawn%s", worst, over, drawn,
+               drawn ? "" : " (EMPTY: the comparison holds nothing)");
     printf("\n");
 }
 
