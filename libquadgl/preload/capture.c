@@ -57,13 +57,15 @@ static int pl_prim_reserve(pl_prim *p, size_t n, unsigned mask)
     size_t old = p->v.cap;
     if (!qgl__verts_reserve(&p->v, n, mask))
         return -1;
-    for (int g = 0; g < PL_GENERICS; g++)
-        if ((p->generic_given & (1u << g)) && (!p->generic[g] || p->v.cap != old)) {
+    for (unsigned m = p->generic_given; m; m &= m - 1) { /* the indices given: mostly none */
+        int g = __builtin_ctz(m);
+        if (!p->generic[g] || p->v.cap != old) {
             float *grown = realloc(p->generic[g], p->v.cap * 4 * sizeof(float));
             if (!grown)
                 return -1;
             p->generic[g] = grown;
         }
+    }
     return 0;
 }
 
@@ -135,9 +137,11 @@ void pl_prim_backfill(pl_ctx *x, pl_prim *p)
         if ((p->v.mask & bit) && p->first[a] > 0)
             pl_fill_current(x, &p->v, a, 0, p->first[a] < n ? p->first[a] : n);
     }
-    for (int g = 0; g < PL_GENERICS; g++)
-        if ((p->generic_given & (1u << g)) && p->generic_first[g] > 0)
+    for (unsigned m = p->generic_given; m; m &= m - 1) {
+        int g = __builtin_ctz(m);
+        if (p->generic_first[g] > 0)
             pl_fill_generic(p, g, p->generic_first[g] < n ? p->generic_first[g] : n);
+    }
 }
 
 /* Attribute slot a is given from the next vertex on: its array joins the prim. Outside a list

@@ -230,11 +230,11 @@ static int pl_batch_join(pl_ctx *x, const pl_prim *p)
 {
     qgl__verts *b = &x->batch.v;
     size_t n0 = b->n, nq = pl_prim_quads(p), n = 4 * nq;
-    unsigned mask = b->mask | p->v.mask;
+    unsigned mask = b->mask | p->v.mask, fresh = p->v.mask & ~b->mask, missing = b->mask & ~p->v.mask;
     if (!qgl__verts_reserve(b, n0 + n, mask))
         return 0;
-    for (int a = 0; a <= QGL__NATTR; a++)
-        if ((p->v.mask & pl_slot_bit(a)) && !(b->mask & pl_slot_bit(a)))
+    for (int a = 0; fresh && a <= QGL__NATTR; a++) /* mostly none: the primitives give alike */
+        if (fresh & pl_slot_bit(a))
             pl_fill_current(x, b, a, 0, n0);
     if (p->mode == GL_QUADS) {
         qgl__verts_copy_range(b, n0, &p->v, 0, n);
@@ -244,8 +244,8 @@ static int pl_batch_join(pl_ctx *x, const pl_prim *p)
         int flat = st->shade_model == GL_FLAT && qgl__flat_corner(qgl, st, QGL_QUAD_STRIP) == 2;
         qgl__verts_unroll(b, n0, &p->v, 0, nq, flat ? 3 : 0);
     }
-    for (int a = 0; a <= QGL__NATTR; a++)
-        if ((b->mask & pl_slot_bit(a)) && !(p->v.mask & pl_slot_bit(a)))
+    for (int a = 0; missing && a <= QGL__NATTR; a++)
+        if (missing & pl_slot_bit(a))
             pl_fill_current(x, b, a, n0, n0 + n);
     b->n = n0 + n;
     b->mask = mask;
