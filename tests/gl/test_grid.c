@@ -164,15 +164,18 @@ static void grouped(th_ctx *t)
     }
     glDisable(GL_DEPTH_TEST);
     int worst = 0;
-    long over = 0;
+    long over = 0, drawn = 0;
     for (int i = 0; i < W * H * 4; i++) {
         int d = abs(img[0][i] - img[1][i]);
         worst = d > worst ? d : worst;
         over += d > 1;
+        drawn += i % 4 == 0 && (img[0][i] | img[0][i + 1] | img[0][i + 2]);
     }
-    printf("grouped: grid %llu, shader path %llu of %d quads; worst difference %d levels, %ld values over 1\n",
-           (unsigned long long)st.subdiv, (unsigned long long)st.mvc, N * N, worst, over);
+    printf("grouped: grid %llu, shader path %llu of %d quads, %ld pixels drawn; worst difference %d levels, %ld "
+           "values over 1\n",
+           (unsigned long long)st.subdiv, (unsigned long long)st.mvc, N * N, drawn, worst, over);
     th_check(st.subdiv > 0 && st.mvc > 0, "grouped: the batch did not mix the grid and the shader path");
+    th_check(drawn > W * H / 4, "grouped: only %ld pixels drawn", drawn);
     th_check(worst <= 1, "grouped: the grid differs from the shader path by %d levels (%ld values over 1)", worst,
              over);
     free(img[0]);
