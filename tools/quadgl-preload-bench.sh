@@ -8,7 +8,7 @@
 #    native). The figure is glxgears' own 5-second report (the last complete one).
 # 2. Immediate-mode cost per vertex (quadgl-preload-bench: 1M vertices of small quads per
 #    frame, glBegin/glEnd with a colour per vertex), native and preloaded per method
-#    (target: <= 1.3x native).
+#    (target: <= 1.3x native); then the same quads one per glBegin/glEnd (200k vertices).
 set -eu
 build=${1:-build}
 secs=${2:-11}
@@ -35,11 +35,18 @@ else
     echo "  (glxgears or xvfb-run missing: skipped)"
 fi
 
-echo "immediate mode, 1M vertices per frame (OSMesa, 256x256)"
-native=$("$bench" | sed -n 's/.* \([0-9.]*\) ns per vertex.*/\1/p')
-printf "  %-8s %8s ns/vertex\n" native "$native"
-for m in off replay split auto mvc; do
-    ns=$(LD_PRELOAD="$lib" QUADGL_METHOD=$m "$bench" | sed -n 's/.* \([0-9.]*\) ns per vertex.*/\1/p')
-    printf "  %-8s %8s ns/vertex  %s x native\n" "$m" "$ns" \
-        "$(awk -v a="$ns" -v b="$native" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "?" }')"
-done
+# immediate TITLE ARGS...: ns per vertex natively and per method, ARGS passed to the bench
+immediate() {
+    echo "$1"
+    shift
+    native=$("$bench" "$@" | sed -n 's/.* \([0-9.]*\) ns per vertex.*/\1/p')
+    printf "  %-8s %8s ns/vertex\n" native "$native"
+    for m in off replay split auto mvc; do
+        ns=$(LD_PRELOAD="$lib" QUADGL_METHOD=$m "$bench" "$@" | sed -n 's/.* \([0-9.]*\) ns per vertex.*/\1/p')
+        printf "  %-8s %8s ns/vertex  %s x native\n" "$m" "$ns" \
+            "$(awk -v a="$ns" -v b="$native" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "?" }')"
+    done
+}
+immediate "immediate mode, 1M vertices per frame in one glBegin/glEnd (OSMesa, 256x256)"
+# the per-primitive cost: text, tiles and facets are drawn a quad per glBegin/glEnd
+immediate "immediate mode, 200k vertices per frame, one quad per glBegin/glEnd" 200000 15 1

@@ -10,7 +10,13 @@
  * generic attributes (glVertexAttrib) are captured the same way, for the driver's own drawing
  * of the primitive: edge flags matter in polygon mode line, generic attributes to a program.
  * Immediate primitives are drawn in chunks of whole quads, so memory stays bounded however
- * many vertices one glBegin/glEnd holds. Misuse keeps the driver's errors: a call GL forbids
+ * many vertices one glBegin/glEnd holds. A glBegin(GL_QUADS) outside a list whose quads may
+ * wait in the pending batch (draw.c) is captured straight into the batch's arrays, as Mesa's
+ * immediate mode writes into its vertex buffer: no arrays of its own, no copy at glEnd; the
+ * values it gives go to the context's current ones, which the driver gets when the batch is
+ * drawn or before anything can read them (pl_cur_sync). Whatever the batch does not carry
+ * (materials, generic attributes, a list called inside, a full batch) sends it back to arrays
+ * of its own first (pl_prim_settle). Misuse keeps the driver's errors: a call GL forbids
  * inside glBegin/glEnd (another glBegin, a state change, a query) makes the driver report
  * GL_INVALID_OPERATION through a glEnd it sees with no glBegin, and has no other effect; a
  * glEnd with no glBegin is the driver's own; vertices outside go to the driver. A display
@@ -38,6 +44,7 @@ void pl_prim_reset(pl_prim *p, GLenum mode)
     p->from_arrays = 0;
     p->in_list = 0;
     p->mat_inert = -1;
+    p->direct = 0;
     memset(p->first, 0, sizeof p->first);
     p->cur_edge = GL_TRUE;
 }
@@ -152,6 +159,21 @@ static int pl_given(pl_ctx *x, int a)
     unsigned bit = a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
     if (PL_LIKELY(p->v.mask & bit))
         return 0;
+    if (p->direct) {
+        /* the batch's vertices so far, this primitive's among them, were made with the value
+         * current now */
+        qgl__verts *b = &x->batch.v;
+        size_t n = p->base + p->v.n;
+        if (!(b->mask & bit) && qgl__verts_reserve(b, n ? n : 1, b->mask | bit)) {
+            pl_fill_current(x, b, a, 0, n);
+            b->mask |= bit;
+        }
+        if (b->mask & bit) {
+            p->v.mask |= bit;
+            return 0;
+        }
+        pl_prim_settle(x);
+    }
     if (pl_prim_reserve(p, p->v.n ? p->v.n : 1, p->v.mask | bit) != 0) {
         p->lost = 1;
         return -1;
@@ -167,10 +189,12 @@ static int pl_given(pl_ctx *x, int a)
 
 void pl_cap_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
 {
-    float *c = x->prim.cur[a];
     if (pl_given(x, a) != 0)
         return;
+    float *c = x->prim.direct ? x->cur[a] : x->prim.cur[a];
     c[0] = s, c[1] = t, c[2] = r, c[3] = q;
+    if (x->prim.direct)
+        x->cur_known |= 1u << a;
 }
 
 void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
@@ -187,8 +211,14 @@ void pl_cap_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
 
 void pl_cap_edgeflag(pl_ctx *x, GLboolean flag)
 {
-    if (pl_given(x, QGL__NATTR) == 0)
+    if (pl_given(x, QGL__NATTR) != 0)
+        return;
+    if (x->prim.direct) {
+        x->cur_edge = flag ? GL_TRUE : GL_FALSE;
+        x->cur_known |= QGL__A_EDGE;
+    } else {
         x->prim.cur_edge = flag ? GL_TRUE : GL_FALSE;
+    }
 }
 
 int pl_hook_edgeflag(pl_ctx *x, GLboolean flag)
@@ -208,6 +238,7 @@ int pl_hook_edgeflag(pl_ctx *x, GLboolean flag)
     if (!x->compiling || x->compile_mode == GL_COMPILE_AND_EXECUTE) {
         x->cur_edge = flag ? GL_TRUE : GL_FALSE;
         x->cur_known |= QGL__A_EDGE;
+        x->cur_lazy &= ~QGL__A_EDGE;
     }
     return 0;
 }
@@ -224,6 +255,7 @@ void pl_cap_generic(pl_ctx *x, GLuint index, float s, float t, float r, float q)
         return;
     }
     if (!(p->generic_given & (1u << index))) {
+        pl_prim_settle(x); /* a batch carries no generic attributes */
         p->generic_given |= 1u << index;
         if (pl_prim_reserve(p, p->v.n ? p->v.n : 1, p->v.mask) != 0) {
             p->generic_given &= ~(1u << index);
@@ -331,6 +363,7 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
+    pl_prim_settle(x); /* nor materials */
     pl_push_material(x, face, pname, material_values(fv, iv, n, given, v), n);
     return 1;
 }
@@ -369,9 +402,37 @@ static void pl_flush_chunk(pl_ctx *x)
     p->nmat = 0;
 }
 
+/* Vertex i of v: the position, and for the attributes of mask the values in cur. */
+static void pl_put_vertex(qgl__verts *v, size_t i, const float (*cur)[4], unsigned char edge, unsigned mask,
+                          const float pos[4])
+{
+    memcpy(v->pos + 4 * i, pos, 4 * sizeof(float));
+    /* row by row of the table, sizes as constants: the copies are a move or two each */
+#define PL_PUT(name, floats, current, array, normalized)                                     \
+    if (mask & (1u << QGL__AT_##name))                                                     \
+        memcpy(v->attr[QGL__AT_##name] + (size_t)(floats) * i, cur[QGL__AT_##name], (floats) * sizeof(float));
+    QGL__ATTRIBS(PL_PUT)
+#undef PL_PUT
+    if (mask & QGL__A_EDGE)
+        v->edge[i] = edge;
+}
+
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
 {
     pl_prim *p = &x->prim;
+    const float pos[4] = {a, b, c, d};
+    if (p->direct) {
+        qgl__verts *bv = &x->batch.v;
+        size_t j = p->base + p->v.n;
+        if (PL_LIKELY(j < bv->cap) || (j < PL_BATCH_MAX && qgl__verts_reserve(bv, j + 1, bv->mask))) {
+            if (PL_LIKELY(j < PL_BATCH_MAX)) {
+                pl_put_vertex(bv, j, (const float (*)[4])x->cur, x->cur_edge, bv->mask, pos);
+                p->v.n++;
+                return;
+            }
+        }
+        pl_prim_settle(x); /* the batch is full: the primitive goes on in its own arrays */
+    }
     size_t i = p->v.n;
     if (PL_UNLIKELY(i >= PL_CHUNK) && i % 4 == 0 && !x->compiling && !p->from_arrays) {
         pl_flush_chunk(x);
@@ -381,21 +442,33 @@ void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
         p->lost = 1;
         return;
     }
-    float *pos = p->v.pos + 4 * i;
-    pos[0] = a, pos[1] = b, pos[2] = c, pos[3] = d;
-    unsigned m = p->v.mask;
-    for (int k = 0; m & QGL__A_ATTRIBS; k++, m >>= 1)
-        if (m & 1) {
-            int f = qgl__attribs[k].floats;
-            memcpy(p->v.attr[k] + (size_t)f * i, p->cur[k], (size_t)f * sizeof(float));
-        }
-    if (p->v.mask & QGL__A_EDGE)
-        p->v.edge[i] = p->cur_edge;
+    pl_put_vertex(&p->v, i, (const float (*)[4])p->cur, p->cur_edge, p->v.mask, pos);
     for (unsigned g = p->generic_given; g; g &= g - 1) {
         int k = __builtin_ctz(g);
         memcpy(p->generic[k] + 4 * i, p->cur_generic[k], 4 * sizeof(float));
     }
     p->v.n = i + 1;
+}
+
+void pl_prim_settle(pl_ctx *x)
+{
+    pl_prim *p = &x->prim;
+    const qgl__verts *b = &x->batch.v;
+    size_t n = p->v.n;
+    if (!p->direct)
+        return;
+    p->direct = 0;
+    /* every attribute the batch carries was written with the vertices: given from the first */
+    if (pl_prim_reserve(p, n ? n : 1, b->mask) != 0) {
+        p->lost = 1;
+        p->v.n = 0;
+        return;
+    }
+    qgl__verts_copy_range(&p->v, 0, b, p->base, n);
+    p->v.mask = b->mask;
+    memset(p->first, 0, sizeof p->first);
+    memcpy(p->cur, x->cur, sizeof p->cur); /* the values given so far, and the rest current */
+    p->cur_edge = x->cur_edge;
 }
 
 /* ---- glBegin / glEnd ---------------------------------------------------------------------------- */
@@ -432,6 +505,8 @@ PL_EXPORT void glBegin(GLenum mode)
         return;
     }
     pl_prim_reset(&x->prim, mode);
+    if (mode == GL_QUADS && !x->compiling)
+        pl_prim_direct(x);
     x->capturing = 1;
     pl_update_slow(x);
 }
@@ -452,6 +527,7 @@ static void pl_note_prim_current(pl_ctx *x, const pl_prim *p)
 void pl_cap_to_driver(pl_ctx *x)
 {
     pl_prim *p = &x->prim;
+    pl_prim_settle(x);
     x->capturing = 0;
     pl_batch_flush(x); /* what came before goes first */
     pl_update_slow(x);
@@ -493,6 +569,11 @@ PL_EXPORT void glEnd(void)
         }
         return;
     }
+    if (x->prim.direct && !x->prim.lost) {
+        PL_TIMED(pl_end_direct(x, &x->prim)); /* its values are the current ones already */
+        return;
+    }
+    pl_prim_settle(x);
     PL_TIMED(pl_end_prim(x, &x->prim));
     pl_note_prim_current(x, &x->prim);
 }

@@ -177,9 +177,6 @@ void pl_draw_prim(pl_ctx *x, pl_prim *p)
 
 /* ---- batches ------------------------------------------------------------------------------- */
 
-/* Vertices a batch may hold: what an immediate-mode chunk holds. */
-#define PL_BATCH_MAX 16384
-
 static unsigned pl_slot_bit(int a)
 {
     return a == QGL__NATTR ? QGL__A_EDGE : 1u << a;
@@ -197,9 +194,18 @@ void pl_batch_keep(pl_ctx *x, int a)
     v->mask |= bit;
 }
 
-/* Whether p, just finished, may wait in the batch: quads only, nothing the GL path would give
- * back to the driver, and a context whose frames end through us (a program that swaps through
- * a pointer we never handed out would show frames without their last quads). */
+/* Whether quads of p may wait in the batch at all: a context whose frames end through us (a
+ * program that swaps through a pointer we never handed out would show frames without their
+ * last quads), and quads the GL path draws. */
+static int pl_batch_open(pl_ctx *x, const pl_prim *p)
+{
+    if (!x->swapped && x->api != PL_API_OSMESA)
+        return 0;
+    return !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED) && !pl_prim_for_driver(x, p);
+}
+
+/* Whether p, just finished, may wait in the batch: whole quads that fit, of a kind the batch
+ * carries, where pl_batch_open allows. */
 static int pl_batchable(pl_ctx *x, const pl_prim *p)
 {
     size_t nq = pl_prim_quads(p);
@@ -207,9 +213,7 @@ static int pl_batchable(pl_ctx *x, const pl_prim *p)
     if ((p->mode == GL_QUAD_STRIP && pl_cfg.method == QGL_METHOD_SPLIT) || p->nmat || p->generic_given ||
         p->lost || !nq || x->batch.v.n + 4 * nq > PL_BATCH_MAX)
         return 0;
-    if (!x->swapped && x->api != PL_API_OSMESA)
-        return 0;
-    if (__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED) || pl_prim_for_driver(x, p))
+    if (!pl_batch_open(x, p))
         return 0;
     if (p->mode == GL_QUADS)
         return 1;
@@ -268,10 +272,39 @@ void pl_end_prim(pl_ctx *x, pl_prim *p)
     pl_update_slow(x);
 }
 
+void pl_prim_direct(pl_ctx *x)
+{
+    pl_prim *p = &x->prim;
+    const qgl__verts *b = &x->batch.v;
+    if (b->n + 4 > PL_BATCH_MAX || !pl_batch_open(x, p))
+        return;
+    /* what the primitive does not give its vertices take, as the batch's earlier ones did:
+     * the current values (known, mostly) */
+    float unused[4];
+    for (unsigned m = b->mask & QGL__A_ATTRIBS & ~x->cur_known; m; m &= m - 1)
+        pl_current_value(x, __builtin_ctz(m), unused);
+    if (b->mask & QGL__A_EDGE)
+        pl_current_edge(x);
+    p->direct = 1;
+    p->base = b->n;
+}
+
+void pl_end_direct(pl_ctx *x, pl_prim *p)
+{
+    p->direct = 0;
+    x->batch.v.n = p->base + 4 * (p->v.n / 4); /* whole quads */
+    x->cur_lazy |= p->v.mask & (QGL__A_ATTRIBS | QGL__A_EDGE); /* given by the batch's drawing */
+    if (!x->batch.v.n)
+        pl_cur_sync(x);
+    pl_update_slow(x);
+}
+
 void pl_batch_flush(pl_ctx *x)
 {
     pl_prim *b = &x->batch;
     size_t n = b->v.n;
+    if (PL_UNLIKELY(x->prim.direct))
+        pl_prim_settle(x); /* a primitive in the making keeps its vertices */
     if (PL_LIKELY(n == 0))
         return;
     b->v.n = 0; /* first: nothing below may find it pending */
@@ -297,5 +330,8 @@ void pl_batch_flush(pl_ctx *x)
             qgl__set_current(gl, a, x->cur[a]);
     if ((v.mask & QGL__A_EDGE) && (x->cur_known & QGL__A_EDGE))
         gl->EdgeFlag(x->cur_edge);
+    x->cur_lazy &= ~v.mask;
+    if (x->cur_lazy)
+        pl_cur_sync(x);
     b->v.mask = 0;
 }

@@ -110,6 +110,8 @@ const char *pl_self_path(void);
 /* ---- captured primitives ------------------------------------------------------------------- */
 
 #define PL_TEXUNITS QGL_MAX_TEXUNITS
+/* Vertices a batch may hold: what an immediate-mode chunk holds (capture.c's PL_CHUNK). */
+#define PL_BATCH_MAX 16384
 #define PL_GENERICS 16 /* generic attributes a primitive may give (replayed to the driver) */
 
 /* glMaterial given between glBegin and glEnd, applied before vertex `vertex`. */
@@ -133,6 +135,11 @@ typedef struct pl_prim {
     int from_arrays;         /* current attributes are restored after a replay */
     int in_list;             /* a display list's own: replayed as the driver's lists draw */
     signed char mat_inert;   /* pl_material_inert's answer for this primitive, -1 unknown */
+    int direct;              /* vertices written straight into the batch's arrays from vertex
+                                `base` on (v holds the count and the given mask, no arrays),
+                                every attribute the batch carries with them; the values given
+                                go to the context's cur (cur here is unused) */
+    size_t base;
 } pl_prim;
 
 void pl_prim_reset(pl_prim *p, GLenum mode);
@@ -180,6 +187,8 @@ struct pl_ctx {
     float cur[QGL__NATTR][4];/* the driver's current attributes as the calls left them */
     unsigned char cur_edge;
     unsigned cur_known;      /* attributes (and QGL__A_EDGE) whose value above is known */
+    unsigned cur_lazy;       /* of those, the ones the driver has not been given yet: set by
+                                primitives that joined the pending batch (pl_cur_sync) */
     pl_prim prim;            /* the primitive being captured */
     pl_prim scratch;         /* vertex-array draws */
     pl_prim batch;           /* finished GL_QUADS primitives not drawn yet (draw.c) */
@@ -230,14 +239,20 @@ void pl_touch_slow(pl_ctx *x, unsigned mask);
 void pl_share_images_changed(pl_share *s);
 unsigned pl_share_images(const pl_share *s);
 
+/* The driver gets the current values it has not been given (x->cur_lazy). */
+void pl_cur_sync(pl_ctx *x);
+
 /* Notes what a call (or a list segment of calls) changed, for the GL path's next draw. */
 static inline void pl_mark(pl_ctx *x, unsigned mask)
 {
     x->dirty |= mask & PL_D_STATE;
     if (mask & PL_D_TEXIMAGE)
         pl_share_images_changed(x->share);
-    if (mask & PL_D_CURRENT)
+    if (mask & PL_D_CURRENT) {
+        if (x->cur_lazy)
+            pl_cur_sync(x);
         x->cur_known = 0;
+    }
     if (mask & PL_D_LIST_BASE)
         x->list_base_known = 0;
 }
@@ -266,7 +281,11 @@ static inline int pl_touch(unsigned mask)
 static inline int pl_inside_capture(void)
 {
     pl_ctx *x = pl_tls_ctx;
-    if (PL_LIKELY(x == NULL || !x->capturing) || (x->compiling && x->compile_mode == GL_COMPILE))
+    if (PL_LIKELY(x == NULL))
+        return 0;
+    if (PL_UNLIKELY(x->cur_lazy) && !x->capturing)
+        pl_cur_sync(x); /* the query may read them */
+    if (PL_LIKELY(!x->capturing) || (x->compiling && x->compile_mode == GL_COMPILE))
         return 0;
     pl_invalid_operation();
     return 1;
@@ -283,6 +302,8 @@ static inline void pl_touch_uncaptured(void)
     pl_ctx *x = pl_tls_ctx;
     if (PL_LIKELY(x == NULL))
         return;
+    if (x->cur_lazy)
+        pl_cur_sync(x);
     x->cur_known = 0;
     if (PL_UNLIKELY(x->slow))
         pl_uncaptured_slow(x);
@@ -303,6 +324,7 @@ static inline void pl_note_current(pl_ctx *x, int a, const float v[4])
     float *c = x->cur[a];
     c[0] = v[0], c[1] = v[1], c[2] = v[2], c[3] = v[3];
     x->cur_known |= 1u << a;
+    x->cur_lazy &= ~(1u << a); /* the driver is given it as well */
 }
 
 /* While compiling: a call the driver must compile comes next (a segment is opened for it). */
@@ -324,6 +346,14 @@ void pl_list_end_prim(pl_ctx *x);
 
 /* Draws the pending batch, if any. */
 void pl_batch_flush(pl_ctx *x);
+/* Captures x->prim, a glBegin(GL_QUADS) outside a list, straight into the batch when it may
+ * join it (capture.c). */
+void pl_prim_direct(pl_ctx *x);
+/* A primitive captured into the batch takes its own arrays (before anything but the capture's
+ * calls reads it, and before the batch is drawn). */
+void pl_prim_settle(pl_ctx *x);
+/* glEnd of a primitive captured into the batch: its whole quads join it. */
+void pl_end_direct(pl_ctx *x, pl_prim *p);
 /* An attribute call outside glBegin/glEnd is about to change slot a's current value (slot
  * QGL__NATTR: the edge flag), which the pending batch does not carry: its vertices keep the
  * value they were given. */
@@ -344,10 +374,16 @@ void pl_cap_to_driver(pl_ctx *x);
  * must not reach the driver), 0 when it goes on to the driver. */
 /* Between primitives while compiling, an attribute call joins the list's geometry; under
  * GL_COMPILE it does not run now. */
-static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
+/* always inlined: one test and four stores for an attribute given again inside a primitive */
+static inline __attribute__((always_inline)) int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
 {
     if (x->capturing) {
-        pl_cap_attrib(x, a, s, t, r, q);
+        if (PL_LIKELY(x->prim.direct && (x->prim.v.mask & (1u << a)))) {
+            float *c = x->cur[a]; /* given before in this primitive: only the value changes */
+            c[0] = s, c[1] = t, c[2] = r, c[3] = q;
+        } else {
+            pl_cap_attrib(x, a, s, t, r, q);
+        }
         return 1;
     }
     const float v[4] = {s, t, r, q};
@@ -364,12 +400,12 @@ static inline int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, fl
 
 static inline int pl_hook_texcoord(pl_ctx *x, GLenum unit, float s, float t, float r, float q)
 {
+    if (unit < PL_TEXUNITS)
+        return pl_hook_attrib(x, QGL__AT_TEX0 + (int)unit, s, t, r, q);
     if (x->capturing) {
         pl_cap_texcoord(x, unit, s, t, r, q);
         return 1;
     }
-    if (unit < PL_TEXUNITS)
-        return pl_hook_attrib(x, QGL__AT_TEX0 + (int)unit, s, t, r, q);
     pl_batch_flush(x);
     if (PL_UNLIKELY(x->compiling))
         pl_list_state(x);

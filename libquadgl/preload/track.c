@@ -46,6 +46,17 @@ void pl_touch_slow(pl_ctx *x, unsigned mask)
     }
 }
 
+void pl_cur_sync(pl_ctx *x)
+{
+    struct qgl__gl *gl = pl_gl();
+    unsigned m = x->cur_lazy;
+    x->cur_lazy = 0;
+    for (unsigned a = m & QGL__A_ATTRIBS; a; a &= a - 1)
+        qgl__set_current(gl, __builtin_ctz(a), x->cur[__builtin_ctz(a)]);
+    if (m & QGL__A_EDGE)
+        gl->EdgeFlag(x->cur_edge);
+}
+
 void pl_current_value(pl_ctx *x, int a, float out[4])
 {
     if (!(x->cur_known & (1u << a))) {

@@ -5,9 +5,12 @@
  * vertex) into a 256 x 256 buffer, then glFinish. It prints the median frame time and the
  * time per vertex. The script runs it natively and with libquadgl-preload.so preloaded
  * (each QUADGL_METHOD), so the ratio is the library's cost per vertex: capture, planning
- * and drawing, against the driver's own immediate mode.
+ * and drawing, against the driver's own immediate mode. With a third argument each
+ * glBegin/glEnd holds that many quads (1: one quad per glBegin, as many programs draw text and
+ * tiles), so the cost per primitive shows too.
  *
- *   quadgl-preload-bench [vertices per frame (default 1000000)] [frames (default 7)] */
+ *   quadgl-preload-bench [vertices per frame (default 1000000)] [frames (default 7)]
+ *                        [quads per glBegin (default all)] */
 #include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <stdio.h>
@@ -29,13 +32,17 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void frame(int quads)
+static void frame(int quads, int per_begin)
 {
     const int grid = 250;
     const float d = 2.0f / (float)grid;
     glClear(GL_COLOR_BUFFER_BIT);
     glBegin(GL_QUADS);
     for (int k = 0; k < quads; k++) {
+        if (per_begin && k && k % per_begin == 0) {
+            glEnd();
+            glBegin(GL_QUADS);
+        }
         int cell = k % (grid * grid);
         float x = -1.0f + d * (float)(cell % grid), y = -1.0f + d * (float)(cell / grid);
         glColor3ub((GLubyte)k, (GLubyte)(k >> 3), 128);
@@ -54,18 +61,19 @@ static void frame(int quads)
 int main(int argc, char **argv)
 {
     int vertices = argc > 1 ? atoi(argv[1]) : 1000000, frames = argc > 2 ? atoi(argv[2]) : 7;
+    int per_begin = argc > 3 ? atoi(argv[3]) : 0;
     unsigned char *buf = malloc(SIZE * SIZE * 4);
     OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
     double *t;
-    if (vertices < 4 || frames < 1 || !buf || !ctx || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, SIZE, SIZE))
+    if (vertices < 4 || frames < 1 || per_begin < 0 || !buf || !ctx || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, SIZE, SIZE))
         return 1;
     t = malloc((size_t)frames * sizeof *t);
     if (!t)
         return 1;
-    frame(vertices / 4); /* warm-up: shaders compiled, buffers grown */
+    frame(vertices / 4, per_begin); /* warm-up: shaders compiled, buffers grown */
     for (int f = 0; f < frames; f++) {
         double t0 = now();
-        frame(vertices / 4);
+        frame(vertices / 4, per_begin);
         t[f] = now() - t0;
     }
     qsort(t, (size_t)frames, sizeof *t, cmp);

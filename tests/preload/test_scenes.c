@@ -508,6 +508,86 @@ static void scene_batch_draws(pt_run *r)
     r->min_quads = 18 + 3 * 7;
 }
 
+/* Single-quad primitives captured straight into the pending batch, each with what sends a
+ * primitive back to arrays of its own or changes the batch under it: no colour of its own
+ * after a colour set outside, a colour given only from its third vertex (the batch so far
+ * carries none), an edge flag from its second vertex and a vertex left over, a generic
+ * attribute from its third vertex, a list called inside (the driver takes the primitive
+ * over), and one primitive of 16 400 vertices (the same quad again and again) that fills the
+ * batch in the middle. Every cell must come out as if drawn alone, and the current colour
+ * after each primitive must be GL's: asked for, and (the last cell) drawn by the driver in a
+ * triangle after a quad of no area and a call that may change current values unseen. */
+static void scene_batch_direct(pt_run *r)
+{
+    float v[4][2], c[4][4], cur[4] = {1, 1, 1, 1}, got[4];
+    GLuint list = glGenLists(1);
+    pt_begin_frame();
+    for (int k = 0; k < 24; k++) {
+        int way = k % 6, reps = k == 4 ? 4100 : 1, declared = 1;
+        cell_quad(k, v);
+        cell_colours(k, c);
+        if (way == 5) { /* compiled between primitives, called inside the next one */
+            glNewList(list, GL_COMPILE);
+            glColor4fv(c[2]);
+            glEndList();
+        }
+        if (way == 0) {
+            glColor4fv(c[1]);
+            memcpy(cur, c[1], sizeof cur);
+        }
+        glBegin(GL_QUADS);
+        for (int n = 0; n < reps; n++)
+            for (int i = 0; i < 4; i++) {
+                if (way == 1 && i < 2) {
+                    memcpy(c[i], cur, sizeof c[i]);
+                } else if (way == 0) {
+                    memcpy(c[i], cur, sizeof c[i]);
+                } else if (way == 5 && i == 2) {
+                    glCallList(list);
+                    declared = 0; /* the driver's own quad: its pixels must be the driver's */
+                } else {
+                    glColor4fv(c[i]);
+                }
+                if (way == 2 && i == 1)
+                    glEdgeFlag(GL_FALSE);
+                if (way == 3 && i == 2)
+                    glVertexAttrib4f(1, 0.5f, 0.25f, 0.125f, 1.0f);
+                glVertex2fv(v[i]);
+            }
+        if (way == 2)
+            glVertex2f(0.0f, 0.0f); /* a fifth vertex: no quad */
+        glEnd();
+        if (way == 2)
+            glEdgeFlag(GL_TRUE);
+        if (way != 0)
+            memcpy(cur, c[3], sizeof cur);
+        if (declared)
+            pt_expect(r, v, c, 0);
+        if (k % 4 == 1) {
+            glGetFloatv(GL_CURRENT_COLOR, got);
+            for (int i = 0; i < 4; i++)
+                pt_value(r, (uint32_t)(got[i] * 1000.0f + 0.5f));
+        }
+    }
+    cell_quad(24, v);
+    cell_colours(24, c);
+    glBegin(GL_QUADS);
+    for (int i = 0; i < 4; i++) {
+        glColor4fv(c[i]);
+        glVertex2fv(v[0]);
+    }
+    glEnd();
+    glIndexi(1);
+    glBegin(GL_TRIANGLES);
+    glVertex2f(v[0][0] - 0.01f, v[0][1] - 0.01f);
+    glVertex2f(v[0][0] + 0.3f, v[0][1]);
+    glVertex2f(v[0][0], v[0][1] + 0.3f);
+    glEnd();
+    glDeleteLists(list, 1);
+    r->checks_reference = 1;
+    r->min_quads = 24;
+}
+
 /* Strip k of three: two non-affine quads in a column of the 64 x 64 window, its vertex i
  * coloured SC[(i + k + shift) % 6]. */
 static void column_strip(int k, float out[6][2])
@@ -1230,6 +1310,7 @@ static const pt_scene scenes[] = {
     {"batches", scene_batches},
     {"batch_states", scene_batch_states},
     {"batch_draws", scene_batch_draws},
+    {"batch_direct", scene_batch_direct},
     {"materials", scene_materials},
     {"material_change", scene_material_change},
     {"unlit_materials", scene_unlit_materials},
