@@ -403,7 +403,7 @@ static void pl_flush_chunk(pl_ctx *x)
 }
 
 /* Vertex i of v: the position, and for the attributes of mask the values in cur. */
-static void pl_put_vertex(qgl__verts *v, size_t i, const float (*cur)[4], unsigned char edge, unsigned mask,
+static inline __attribute__((always_inline)) void pl_put_vertex(qgl__verts *v, size_t i, const float (*cur)[4], unsigned char edge, unsigned mask,
                           const float pos[4])
 {
     memcpy(v->pos + 4 * i, pos, 4 * sizeof(float));

@@ -374,12 +374,13 @@ void pl_cap_to_driver(pl_ctx *x);
  * must not reach the driver), 0 when it goes on to the driver. */
 /* Between primitives while compiling, an attribute call joins the list's geometry; under
  * GL_COMPILE it does not run now. */
-/* always inlined: one test and four stores for an attribute given again inside a primitive */
+/* always inlined: a test and four stores for an attribute given again inside a primitive */
 static inline __attribute__((always_inline)) int pl_hook_attrib(pl_ctx *x, int a, float s, float t, float r, float q)
 {
     if (x->capturing) {
-        if (PL_LIKELY(x->prim.direct && (x->prim.v.mask & (1u << a)))) {
-            float *c = x->cur[a]; /* given before in this primitive: only the value changes */
+        pl_prim *p = &x->prim;
+        if (PL_LIKELY(p->v.mask & (1u << a))) { /* given before in this primitive: only the value changes */
+            float *c = p->direct ? x->cur[a] : p->cur[a];
             c[0] = s, c[1] = t, c[2] = r, c[3] = q;
         } else {
             pl_cap_attrib(x, a, s, t, r, q);
