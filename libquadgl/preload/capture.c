@@ -464,7 +464,8 @@ void pl_prim_settle(pl_ctx *x)
         p->v.n = 0;
         return;
     }
-    qgl__verts_copy_range(&p->v, 0, b, p->base, n);
+    if (n) /* the batch may have no arrays yet */
+        qgl__verts_copy_range(&p->v, 0, b, p->base, n);
     p->v.mask = b->mask;
     memset(p->first, 0, sizeof p->first);
     memcpy(p->cur, x->cur, sizeof p->cur); /* the values given so far, and the rest current */
