@@ -323,15 +323,8 @@ void pl_batch_flush(pl_ctx *x)
     }
     /* A replay left the batch's last values current, an array draw undefined ones; the program
      * has set its own since: they are put back (known: a call that could change them unseen
-     * would have drawn the batch first). */
-    struct qgl__gl *gl = pl_gl();
-    for (int a = 0; a < QGL__NATTR; a++)
-        if ((v.mask & (1u << a)) && (x->cur_known & (1u << a)))
-            qgl__set_current(gl, a, x->cur[a]);
-    if ((v.mask & QGL__A_EDGE) && (x->cur_known & QGL__A_EDGE))
-        gl->EdgeFlag(x->cur_edge);
-    x->cur_lazy &= ~v.mask;
-    if (x->cur_lazy)
-        pl_cur_sync(x);
+     * would have drawn the batch first), with those not given to the driver yet. */
+    x->cur_lazy |= v.mask & x->cur_known & (QGL__A_ATTRIBS | QGL__A_EDGE);
+    pl_cur_sync(x);
     b->v.mask = 0;
 }

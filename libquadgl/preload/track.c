@@ -51,8 +51,10 @@ void pl_cur_sync(pl_ctx *x)
     struct qgl__gl *gl = pl_gl();
     unsigned m = x->cur_lazy;
     x->cur_lazy = 0;
-    for (unsigned a = m & QGL__A_ATTRIBS; a; a &= a - 1)
-        qgl__set_current(gl, __builtin_ctz(a), x->cur[__builtin_ctz(a)]);
+    for (unsigned b = m & QGL__A_ATTRIBS; b; b &= b - 1) {
+        int a = __builtin_ctz(b);
+        qgl__set_current(gl, a, x->cur[a]);
+    }
     if (m & QGL__A_EDGE)
         gl->EdgeFlag(x->cur_edge);
 }
