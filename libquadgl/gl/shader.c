@@ -427,9 +427,10 @@ static const char gs_plane[] =
  * unclipped immediate draw takes 0-2, decided per driver batch, which no cover can follow),
  * concave through the reflex corner, a bow-tie as its two lobes. */
 static const char gs_cover[] =
-    "void tri(int a, int b, int c) { emit(a); emit(b); emit(c); EndPrimitive(); }\n"
-    /* triangles (a, a+1, a+2) and (a, a+2, a+3) as one strip: four vertices, not six */
-    "void quad(int a) { emit((a + 1) & 3); emit((a + 2) & 3); emit(a); emit((a + 3) & 3); EndPrimitive(); }\n"
+    /* the cover found: none (0), a strip of triangles (a, a+1, a+2) and (a, a+2, a+3), four
+     * vertices (1), or a bow-tie's two lobes meeting at the crossing C[4] on edge a, a+1 (2) */
+    "int c_mode = 0, c_a = 1;\n"
+    "void quad(int a) { c_mode = 1; c_a = a; }\n"
     "float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }\n"
     /* C[4] (its eye and in-plane positions) := the crossing point, at parameter t along
      * a->b in the plane it was found in: on screen, made perspective-correct with the clip w;
@@ -471,18 +472,18 @@ static const char gs_cover[] =
     "    vec2 tu = crossing(v[0], v[1], v[2], v[3]);\n"
     "    if (inside01(tu)) {\n"
     "        set_cross(0, 1, tu.x);\n"
-    "        tri(4, 1, 2); tri(4, 3, 0);\n"
+    "        c_mode = 2; c_a = 0;\n"
     "        return;\n"
     "    }\n"
     "    tu = crossing(v[1], v[2], v[3], v[0]);\n"
     "    if (inside01(tu)) {\n"
     "        set_cross(1, 2, tu.x);\n"
-    "        tri(4, 2, 3); tri(4, 0, 1);\n"
+    "        c_mode = 2; c_a = 1;\n"
     "        return;\n"
     "    }\n"
     "    quad(1);\n"
     "}\n"
-    "void main() {\n"
+    "void find_cover() {\n"
     "    for (int i = 0; i < 4; i++) C[i] = gl_in[i].gl_Position;\n"
     "#if CLIP\n"
     "    for (int i = 0; i < 4; i++) E[i] = q_eye[i];\n"
@@ -525,6 +526,18 @@ static const char gs_cover[] =
     "#endif\n"
     "    cover(v);\n"
     "#endif\n"
+    "}\n"
+    /* One emission for every case: a SIMD driver (llvmpipe) runs every branch's emits for all
+     * its primitives, masked, so emits spread over the cases cost several times over. */
+    "void main() {\n"
+    "    find_cover();\n"
+    "    if (c_mode == 0) return;\n"
+    "    int a = c_a, b = (a + 1) & 3, c = (a + 2) & 3, d = (a + 3) & 3;\n"
+    "    bool q = c_mode == 1;\n"
+    "    emit(q ? b : 4); emit(q ? c : b); emit(q ? a : c);\n"
+    "    if (q) emit(d);\n"
+    "    EndPrimitive();\n"
+    "    if (!q) { emit(4); emit(d); emit(a); EndPrimitive(); }\n"
     "}\n";
 
 static void gs_source(sb *b, const qgl__key *k)
