@@ -139,6 +139,12 @@ static int needs_eye(const qgl__key *k)
     return lit(k) || k->clip || (k->fog && (k->flags & QGL__KF_FOG_DEPTH)) || gen_uses(k, QGL__G_EYE, QGL__G_REFLECT);
 }
 
+/* The texture coordinate components each target reads (q divides s, t, r; a cube map's
+ * direction needs none): a 2D texture passes three vec4 per quad, not four, and every vec4 a
+ * vertex carries costs a SIMD driver copies and setup per vertex. */
+static const char *const tex_comps[] = {
+    [QGL__T_1D] = "xw", [QGL__T_2D] = "xyw", [QGL__T_3D] = "xyzw", [QGL__T_CUBE] = "xyz", [QGL__T_RECT] = "xyw"};
+
 /* The view-invariant forms (QGL__KF_PLANE): a planar quad's cover in its plane, a non-planar
  * quad's hit on its bilinear patch. */
 static int plane_cover(const qgl__key *k)
@@ -157,7 +163,7 @@ int qgl__key_slots(const qgl__key *k)
     int colours = per * (1 + has_secondary(k)) * (two_sided(k) ? 2 : 1);
     int n = (patch(k) ? 4 : 2) + colours + (k->fog ? 1 : 0) + (frag_clip(k) ? 4 : 0) + (k->flags & QGL__KF_DEPTH ? 2 : 0);
     for (int u = 0; u < k->nunits; u++)
-        n += k->unit[u].target ? 4 : 0;
+        n += k->unit[u].target ? (int)strlen(tex_comps[k->unit[u].target]) : 0;
     return n;
 }
 
@@ -325,34 +331,38 @@ typedef struct flat_var {
     const char *name;
     int colour; /* flat shading passes only the provoking corner's value */
     int scalar; /* float per corner (packed into one vec4) */
+    const char *comps; /* only these components, one vec4 of the four corners' values each */
 } flat_var;
 
 static int flat_vars(const qgl__key *k, flat_var out[16])
 {
     int n = 0;
-    out[n++] = (flat_var){"pri", 1, 0};
+    out[n++] = (flat_var){"pri", 1, 0, NULL};
     if (has_secondary(k))
-        out[n++] = (flat_var){"sec", 1, 0};
+        out[n++] = (flat_var){"sec", 1, 0, NULL};
     if (two_sided(k)) {
-        out[n++] = (flat_var){"bpri", 1, 0};
+        out[n++] = (flat_var){"bpri", 1, 0, NULL};
         if (has_secondary(k))
-            out[n++] = (flat_var){"bsec", 1, 0};
+            out[n++] = (flat_var){"bsec", 1, 0, NULL};
     }
     if (k->fog)
-        out[n++] = (flat_var){"fog", 0, 1};
+        out[n++] = (flat_var){"fog", 0, 1, NULL};
     if (frag_clip(k))
-        out[n++] = (flat_var){"eye", 0, 0};
+        out[n++] = (flat_var){"eye", 0, 0, NULL};
     static const char *const tex[QGL_MAX_TEXUNITS] = {"tex0", "tex1", "tex2", "tex3"};
     for (int u = 0; u < k->nunits; u++)
         if (k->unit[u].target)
-            out[n++] = (flat_var){tex[u], 0, 0};
+            out[n++] = (flat_var){tex[u], 0, 0, tex_comps[k->unit[u].target]};
     return n;
 }
 
 static const char *flat_type(const qgl__key *k, const flat_var *v)
 {
+    static const char *const rows[] = {"", "vec4", "mat2x4", "mat3x4", "mat4"};
     if (v->colour && (k->flags & QGL__KF_FLAT))
         return "vec4";
+    if (v->comps)
+        return rows[strlen(v->comps)];
     return v->scalar ? "vec4" : "mat4";
 }
 
@@ -527,17 +537,19 @@ static const char gs_cover[] =
     "    cover(v);\n"
     "#endif\n"
     "}\n"
-    /* One emission for every case: a SIMD driver (llvmpipe) runs every branch's emits for all
-     * its primitives, masked, so emits spread over the cases cost several times over. */
+    /* One emission for every case, the lobes' first four vertices in the strip's slots: a SIMD
+     * driver (llvmpipe) runs every branch's emits for all its primitives, masked, so emits
+     * spread over the cases cost several times over. */
     "void main() {\n"
     "    find_cover();\n"
     "    if (c_mode == 0) return;\n"
     "    int a = c_a, b = (a + 1) & 3, c = (a + 2) & 3, d = (a + 3) & 3;\n"
     "    bool q = c_mode == 1;\n"
     "    emit(q ? b : 4); emit(q ? c : b); emit(q ? a : c);\n"
-    "    if (q) emit(d);\n"
+    "    if (!q) EndPrimitive();\n"
+    "    emit(q ? d : 4);\n"
+    "    if (!q) { emit(d); emit(a); }\n"
     "    EndPrimitive();\n"
-    "    if (!q) { emit(4); emit(d); emit(a); EndPrimitive(); }\n"
     "}\n";
 
 static void gs_source(sb *b, const qgl__key *k)
@@ -570,6 +582,13 @@ static void gs_source(sb *b, const qgl__key *k)
             put(b, "    c_%s = q_%s[%d];\n", nm, nm, k->corner);
         else if (v[i].scalar)
             put(b, "    c_%s = vec4(q_%s[0], q_%s[1], q_%s[2], q_%s[3]);\n", nm, nm, nm, nm, nm);
+        else if (v[i].comps) {
+            put(b, "    c_%s = %s(", nm, flat_type(k, &v[i]));
+            for (const char *c = v[i].comps; *c; c++)
+                put(b, "%svec4(q_%s[0].%c, q_%s[1].%c, q_%s[2].%c, q_%s[3].%c)", c == v[i].comps ? "" : ", ", nm, *c, nm,
+                    *c, nm, *c, nm, *c);
+            put(b, ");\n");
+        }
         else
             put(b, "    c_%s = mat4(q_%s[0], q_%s[1], q_%s[2], q_%s[3]);\n", nm, nm, nm, nm, nm);
     }
@@ -722,13 +741,9 @@ static const char *const sampler_type[] = {"", "sampler1D", "sampler2D", "sample
 /* The texel of unit u (texture coordinates interpolated, divided by q as fixed function). */
 static void fs_texel(sb *b, const qgl__key *k, int u)
 {
-    put(b, "    vec4 tc%d = f_tex%d * lam;\n", u, u);
-    switch (k->unit[u].target) {
-    case QGL__T_1D: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d.xw);\n", u, u, u); break;
-    case QGL__T_3D: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d);\n", u, u, u); break;
-    case QGL__T_CUBE: put(b, "    vec4 tx%d = texture(u_tex%d, tc%d.xyz);\n", u, u, u); break;
-    default: put(b, "    vec4 tx%d = textureProj(u_tex%d, tc%d.xyw);\n", u, u, u); break;
-    }
+    /* lam times the rows: the components the target reads (tex_comps), interpolated */
+    put(b, "    vec%zu tc%d = lam * f_tex%d;\n", strlen(tex_comps[k->unit[u].target]), u, u);
+    put(b, "    vec4 tx%d = %s(u_tex%d, tc%d);\n", u, k->unit[u].target == QGL__T_CUBE ? "texture" : "textureProj", u, u);
 }
 
 /* A COMBINE source as a vec4 expression. */
