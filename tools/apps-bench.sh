@@ -26,8 +26,10 @@
 # program >= 0.97x, the median >= 0.98x, none below 0.9x, "smooth" programs >= 0.9x.
 #
 # --memory: the resident size instead (VmRSS at the end of a 30-second run, native and
-# auto, one run each unless told, time not frozen: sonar aborts after some 150 frames of a
-# frozen clock, natively too): target within 10% of native. --no-freeze: real time always.
+# auto, one run each unless told; the time of day and pid frozen as for frame rates, so that
+# both runs draw the same scene: engine, for one, picks its engine at random, and sonar aborts
+# on the frozen clock, natively too): target within 10% of native. --no-freeze: real time
+# always.
 #
 # Writes OUT/apps-bench.md (table), OUT/apps-bench.csv (one row per run), OUT/apps-bench.png
 # (the ratio per program and method; needs gnuplot), or OUT/apps-memory.md and .csv.
@@ -48,7 +50,7 @@ while [ $# -gt 0 ]; do
     --set) set=$2; shift 2 ;;
     --all) set=all; shift ;;
     --quick) secs=2 reps=1 reps_given=1; shift ;;
-    --memory) memory=1 secs=30 freeze=0; shift ;;
+    --memory) memory=1 secs=30; shift ;;
     --no-freeze) freeze=0; shift ;;
     -h|--help) sed -n '2,/^set -eu/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) echo "apps-bench: unknown option $1" >&2; exit 2 ;;
