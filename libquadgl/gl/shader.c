@@ -15,7 +15,8 @@
  * reflex corner; bow-tie: the two lobes meeting at the crossing point, each keeping its own
  * winding, so facing is per lobe; a corner at or behind the eye: the clipped split, with the
  * fragment shader killing what lies outside the quad). It passes the corners' per-vertex
- * results flat (one mat4 per vec4 result: column i is corner i), and g_i = x_i - w_i X/W
+ * results flat (one mat4 per vec4 result: column i is corner i; texture coordinates as one
+ * vec4 of the four corners per component the target reads), and g_i = x_i - w_i X/W
  * (clip corner i against the emitted vertex X), affine in the window: interpolated without
  * perspective they are s~_i(p), the core's homogeneous s~_i, times one scale per quad that
  * keeps them near 1 and leaves the weights unchanged (no per-fragment normalisation). Where
