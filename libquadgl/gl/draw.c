@@ -177,7 +177,7 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
 {
     double attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
     *planar = qgl__planar(p);
-    if (!*planar || st->nonaffine)
+    if (!*planar || st->nonaffine || ctx->judge_off)
         return 0;
     if (attribs_constant(v, attribs_read(st, v->mask), idx))
         return 1; /* nothing varies over the quad (a flat-coloured face): the commonest case */
@@ -679,7 +679,7 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
 {
     double n[4], m[4], limit = 0, len2 = 0;
     int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0, ok;
-    if (lit && skip_lit_test(ctx, bbox_area_px(px)))
+    if (ctx->judge_off || (lit && skip_lit_test(ctx, bbox_area_px(px))))
         return 0;
     float w0 = v->pos[4 * idx[0] + 3];
     if (v->pos[4 * idx[1] + 3] == w0 && v->pos[4 * idx[2] + 3] == w0 && v->pos[4 * idx[3] + 3] == w0)
@@ -1213,6 +1213,64 @@ static void merge_forms(qgl_context *ctx, qgl_topology topo, unsigned char *path
     }
 }
 
+static void plan_one(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q,
+                     const qgl__facts *facts, int judge)
+{
+    ctx->judge_off = !judge;
+    unsigned char p = plan_quad(ctx, st, v, topo, q, facts);
+    ctx->judge_off = 0;
+    if ((p & QGL__P_KIND) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
+        p = QGL__P_SUBDIV;
+    ctx->path[q] = p;
+}
+
+/* Every quad's path, judging the split only where its verdict can survive merge_runs: a run
+ * of split quads shorter than QGL__SHORT_RUN next to a shader-path quad is drawn smooth
+ * anyway, and judging a lit quad costs about as much as shading a small one. After a
+ * shader-path quad L, the quad QGL__SHORT_RUN on (the last that could close a short run) is
+ * planned first and the window scanned back from it: at the first shader-path quad c found,
+ * the quads between L and c take the shader path unjudged, as the merge would give them
+ * (only a run walled in by grid, fallback or behind-the-eye quads could have stayed split,
+ * and smooth is right for any quad). A window with no shader-path quad is a long run, planned
+ * on until the next one. After the last shader-path quad, a tail shorter than the window
+ * merges whatever it holds. */
+static void plan_runs(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
+                      const qgl__facts *facts)
+{
+    const size_t S = QGL__SHORT_RUN;
+    size_t hi = 0;          /* quads [0, hi) are planned */
+    ptrdiff_t last = -1;    /* the last shader-path quad among them, -1 for none */
+    while (hi < nq) {
+        size_t top = (size_t)(last + (ptrdiff_t)S);
+        if (top >= nq) {
+            for (; hi < nq; hi++)
+                plan_one(ctx, st, v, topo, hi, facts, last < 0);
+            break;
+        }
+        size_t c = top + 1;
+        for (size_t b = top + 1; b-- > hi;) {
+            plan_one(ctx, st, v, topo, b, facts, 1);
+            if (joins_shader_run(ctx->path[b])) {
+                c = b;
+                break;
+            }
+        }
+        if (c <= top) {
+            for (; hi < c; hi++)
+                plan_one(ctx, st, v, topo, hi, facts, 0);
+            hi = top + 1, last = (ptrdiff_t)c;
+            continue;
+        }
+        for (hi = top + 1; hi < nq;) { /* a long run: on to its end */
+            plan_one(ctx, st, v, topo, hi, facts, 1);
+            if (joins_shader_run(ctx->path[hi++])) {
+                last = (ptrdiff_t)hi - 1;
+                break;
+            }
+        }
+    }
+}
+
 static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
                 const qgl__facts *facts)
 {
@@ -1227,12 +1285,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     if (!ensure((void **)&ctx->clip, &ctx->clip_cap, 4 * v->n, sizeof(double)))
         return 0;
     transform_all(st->mvp, v->pos, v->n, ctx->clip);
-    for (size_t q = 0; q < nq; q++) {
-        unsigned char p = plan_quad(ctx, st, v, topo, q, facts);
-        if ((p & QGL__P_KIND) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
-            p = QGL__P_SUBDIV;
-        ctx->path[q] = p;
-    }
+    plan_runs(ctx, st, v, topo, nq, facts);
     merge_runs(ctx->path, nq);
     if (ctx->shader_level != 120)
         merge_forms(ctx, topo, ctx->path, nq);

@@ -11,7 +11,15 @@
  * equals the driver's quads there within 0 (the split is what the driver does) and method
  * MVC_PLANE on the large quad. A third draws four such runs, each followed by a large quad,
  * in one GL_QUADS primitive: in order that is 8 draws; with the depth test on (order cannot
- * show) the runs are grouped by path into 2, and the picture must not change. */
+ * show) the runs are grouped by path into 2, and the picture must not change.
+ *
+ * A fourth frame draws quads large enough to be judged (3 x 10 pixels) whose colours are
+ * affine but for a tenth of a level at one corner, so the split passes only by the invisible-
+ * split bound, in runs of 1 to 40 between quads of random colours (shader path), at the
+ * start and end of a primitive and in a primitive with no shader-path quad at all. The
+ * planner skips judging quads whose runs would be merged anyway; the counters must be those
+ * of judging every quad and merging runs under 32 (computed here from the pattern), and the
+ * picture within 1 level of MVC_PLANE's. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -76,6 +84,69 @@ static void interleaved(void)
         }
     }
     qglEnd();
+}
+
+/* The judged runs: each primitive a list of run lengths of invisible-split quads, a quad on
+ * the shader path after each but the last (-1 ends a primitive). */
+static const int judged_runs[] = {31, 1, 5, 30, 31, 32, 33, 40, 10, -1, 32, 31, -1, 20, -1};
+#define JUDGED_PER_ROW 64
+
+static void judged_quad(int n, int smooth)
+{
+    const float px = 2.0f / 256;
+    float x0 = -0.95f + (float)(n % JUDGED_PER_ROW) * 3 * px, y0 = -0.95f + (float)(n / JUDGED_PER_ROW) * 12 * px;
+    float xs[4] = {x0, x0 + 3 * px, x0 + 3 * px, x0}, ys[4] = {y0, y0, y0 + 10 * px, y0 + 10 * px};
+    for (int c = 0; c < 4; c++) {
+        if (smooth)
+            qglColor3f(hash(n, 3 * c), hash(n, 3 * c + 1), hash(n, 3 * c + 2));
+        else /* affine in the pixel position, a tenth of a level off at corner 2 */
+            qglColor3f(0.2f + 0.3f * (xs[c] + 1), 0.6f - 0.2f * (ys[c] + 1), c == 2 ? 0.5004f : 0.5f);
+        qglVertex2f(xs[c], ys[c]);
+    }
+}
+
+static void judged(void)
+{
+    int n = 0;
+    qglBegin(GL_QUADS);
+    for (size_t r = 0; r < sizeof judged_runs / sizeof *judged_runs; r++) {
+        if (judged_runs[r] < 0) {
+            qglEnd();
+            if (r + 1 < sizeof judged_runs / sizeof *judged_runs)
+                qglBegin(GL_QUADS);
+            continue;
+        }
+        for (int i = 0; i < judged_runs[r]; i++)
+            judged_quad(n++, 0);
+        if (judged_runs[r + 1] >= 0)
+            judged_quad(n++, 1);
+    }
+}
+
+/* What judging every quad and merging short runs gives: quads, split quads and draws. */
+static void judged_expected(int *quads, int *split, int *draws)
+{
+    *quads = *split = *draws = 0;
+    size_t r0 = 0;
+    for (size_t r = 0; r < sizeof judged_runs / sizeof *judged_runs; r++) {
+        if (judged_runs[r] >= 0)
+            continue;
+        int shader = (int)(r - r0) - 1, prev_smooth = 0; /* runs in [r0, r), one shader quad between each */
+        *quads += shader;
+        for (size_t k = r0; k < r; k++) {
+            int n = judged_runs[k], kept = n >= 32 || shader == 0;
+            *quads += n;
+            *split += kept ? n : 0;
+            *draws += kept && n > 0 ? 1 : 0;
+            if (kept)
+                prev_smooth = 0;
+            if (k + 1 < r) { /* the shader quad after it, with the merged runs around it */
+                *draws += !prev_smooth;
+                prev_smooth = 1;
+            }
+        }
+        r0 = r + 1;
+    }
 }
 
 static unsigned char *frame(th_ctx *t, qgl_method m, void (*draw)(void), qgl_gl_stats_t *st)
@@ -149,6 +220,27 @@ int main(void)
            (unsigned long long)sm.mvc, d);
     th_check(sa.draws == 8 && sm.draws == 2 && sm.split == 160 && sm.mvc == 4, "interleaved runs: draws");
     th_check(d == 0, "interleaved runs: grouping by path changed the picture");
+    free(a);
+    free(m);
+
+    int eq, es, ed;
+    judged_expected(&eq, &es, &ed);
+    a = frame(&t, QGL_METHOD_AUTO, judged, &sa);
+    m = frame(&t, QGL_METHOD_MVC_PLANE, judged, &sm);
+    int worst = 0;
+    for (int i = 0; i < 4 * t.w * t.h; i++) {
+        int e = abs((int)a[i] - (int)m[i]);
+        worst = e > worst ? e : worst;
+    }
+    printf("judged runs: auto %llu quads in %llu draws (mvc %llu, split %llu), expected %d in %d (split %d); "
+           "largest difference from MVC_PLANE %d levels\n",
+           (unsigned long long)sa.quads, (unsigned long long)sa.draws, (unsigned long long)sa.mvc,
+           (unsigned long long)sa.split, eq, ed, es, worst);
+    th_write(&t, a, "runs_judged");
+    th_check(sa.quads == (unsigned long long)eq && sa.split == (unsigned long long)es &&
+                 sa.draws == (unsigned long long)ed && sa.mvc == sa.quads - sa.split,
+             "judged runs: counters");
+    th_check(worst <= 1, "judged runs: picture");
     free(a);
     free(m);
     th_free(&t);
