@@ -16,7 +16,10 @@
  * the grid under a directional and a positional light with specular highlights, one-sided and
  * two-sided, split (more than half) within 1/255 of MVC_PLANE, also after a run of quads that
  * failed (the planner then judges only some); normals that alternate from vertex to vertex
- * never split; with the budget 1000 times larger they do and the pictures part.
+ * never split; with the budget 1000 times larger they do and the pictures part. So are
+ * sharper lights, where every term the planner lights the corners with counts: a directional
+ * light well off the view axis with a tight highlight, and a spot over the plane seen by a
+ * local viewer (some quads split, some not, each picture within 1/255).
  * Corners given with their own w (glVertex4f) are held to the same picture.
  * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
  * the planner judges every lit quad rather than leave some untested where this machine's
@@ -121,6 +124,30 @@ static void lights(int on, int two_sided)
     glEnable(GL_LIGHT0);
     glEnable(GL_LIGHT1);
     glEnable(GL_LIGHTING);
+}
+
+/* Sharper lighting, where each light term the planner redoes matters: a directional light
+ * well off the view axis (its half vector differs from its direction) with a tight highlight,
+ * then a spot light seen by a local viewer. */
+static void sharp_lights(int spot)
+{
+    static const float dir[4] = {0.7f, 0.2f, 0.6f, 0}, posl[4] = {0.2f, -0.1f, 0.9f, 1}, sdir[3] = {0, 0.1f, -1};
+    static const float white[4] = {0.9f, 0.9f, 0.9f, 1}, none[4] = {0, 0, 0, 1};
+    glMatrixMode(GL_MODELVIEW);
+    glPushMatrix();
+    if (!spot) /* the spot stands over the plane, in its coordinates */
+        glLoadIdentity();
+    glLightfv(GL_LIGHT0, GL_POSITION, spot ? posl : dir);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glLightfv(GL_LIGHT0, GL_SPECULAR, white);
+    glLightfv(GL_LIGHT0, GL_SPOT_DIRECTION, sdir);
+    glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, spot ? 40 : 180);
+    glLightf(GL_LIGHT0, GL_SPOT_EXPONENT, spot ? 6 : 0);
+    glPopMatrix();
+    glLightfv(GL_LIGHT1, GL_DIFFUSE, none);
+    glLightfv(GL_LIGHT1, GL_SPECULAR, none);
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 60);
+    glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, spot);
 }
 
 static void view(void)
@@ -301,6 +328,16 @@ int main(void)
     normals(0.6);
     split = compare(&t, "lit, after visible ones", 0, 1, 0, 0);
     th_check(split > 0, "lit quads after failures: none split (the planner stopped judging)");
+    /* where the planner's lighting is wrong it splits quads whose highlight shows */
+    for (int spot = 0; spot < 2; spot++) {
+        sharp_lights(spot);
+        qgl_gl_set_split_error(t.qgl, 0);
+        split = compare(&t, spot ? "lit, spot, local viewer" : "lit, off-axis highlight", 0, 1, 0, 0);
+        th_check(split > 0 && split < N * N, "lit%s: %d of %d quads split, expected some", spot ? ", spot" : "",
+                 split, N * N);
+    }
+    sharp_lights(0); /* the spot's cone and the local viewer off again */
+    lights(1, 0);
     normals(-1);
     teeth(&t, "lit, budget x1000", W * H / 50, 8);
     lights(0, 0);
