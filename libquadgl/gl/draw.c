@@ -177,7 +177,7 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
 {
     double attr[4 * QGL__ATTR_MAX], packed[4 * QGL__ATTR_MAX];
     *planar = qgl__planar(p);
-    if (!*planar || st->nonaffine || ctx->judge_off)
+    if (!*planar || st->nonaffine)
         return 0;
     if (attribs_constant(v, attribs_read(st, v->mask), idx))
         return 1; /* nothing varies over the quad (a flat-coloured face): the commonest case */
@@ -679,7 +679,7 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
 {
     double n[4], m[4], limit = 0, len2 = 0;
     int lit = st->lit_cpu && (st->nonaffine || st->pv_material), invisible = 0, ok;
-    if (ctx->judge_off || (lit && skip_lit_test(ctx, bbox_area_px(px))))
+    if (lit && skip_lit_test(ctx, bbox_area_px(px)))
         return 0;
     float w0 = v->pos[4 * idx[0] + 3];
     if (v->pos[4 * idx[1] + 3] == w0 && v->pos[4 * idx[2] + 3] == w0 && v->pos[4 * idx[3] + 3] == w0)
@@ -722,8 +722,9 @@ static int near_or_out(double c, double w)
     return !(a <= w) || (a != w && a > w * (1 - 1e-6));
 }
 
+/* judge: whether a split the invisible-split bound allows can matter (see plan_runs). */
 static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
-                               qgl_topology topo, size_t q, const qgl__facts *facts)
+                               qgl_topology topo, size_t q, const qgl__facts *facts, int judge)
 {
     size_t idx[4];
     const double *clip[4];
@@ -752,7 +753,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         pixel_corners(clip, st->viewport, px);
     if (auto_ && !external && !st->pv_material && bbox_area_px(px) < ctx->invisible_area_px)
         return QGL__P_SPLIT | QGL__P_EITHER;
-    int exact = quad_exact(ctx, st, v, idx, clip, px, auto_ && !external, facts, q, &planar);
+    int exact = quad_exact(ctx, st, v, idx, clip, px, auto_ && !external && judge, facts, q, &planar);
     if (auto_ && exact)
         return QGL__P_SPLIT | QGL__P_EITHER;
     if (!st->modelled || (!planar && st->polygon_offset))
@@ -1216,9 +1217,7 @@ static void merge_forms(qgl_context *ctx, qgl_topology topo, unsigned char *path
 static void plan_one(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t q,
                      const qgl__facts *facts, int judge)
 {
-    ctx->judge_off = !judge;
-    unsigned char p = plan_quad(ctx, st, v, topo, q, facts);
-    ctx->judge_off = 0;
+    unsigned char p = plan_quad(ctx, st, v, topo, q, facts, judge);
     if ((p & QGL__P_KIND) == QGL__P_MVC && !ctx->has_vao && ctx->shader_level != 120)
         p = QGL__P_SUBDIV;
     ctx->path[q] = p;

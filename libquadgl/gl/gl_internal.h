@@ -597,7 +597,6 @@ struct qgl_context {
     qgl__state state;         /* the state of the last draw (state.c) */
     qgl__lightvals lightvals; /* light.c's copy of the light values, for the planner */
     unsigned lit_tested, lit_passed, lit_skipped; /* lit quads judged lately (split_invisible) */
-    int judge_off; /* plan() knows the quad will be drawn smooth however the split would fare */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
