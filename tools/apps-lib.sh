@@ -73,6 +73,11 @@ apps_list() {
     done
 }
 
+# apps_in_set NAME SET: whether the list puts NAME in SET.
+apps_in_set() {
+    apps_list "$2" | cut -d' ' -f1 | grep -qx "$1"
+}
+
 # apps_command NAME ARGS...: the command line (glxgears from PATH, a hack from xscreensaver's
 # directory, with -delay 0 so only rendering limits the frame rate), at the window size.
 apps_command() {

@@ -10,8 +10,9 @@
 # constant getpid (the xscreensaver hacks seed their random numbers from both) and reads the
 # back buffer at swap N (default 20) from its own swap wrapper. Two native runs come first
 # and must be identical, else the program is skipped as not deterministic; when a check
-# fails, up to three more native runs after the others must match too (a picture that drifts with the
-# machine's timing, an image loaded by a child process say, is not judged). Then, against
+# fails, up to three more native runs after the others must match too (a picture that drifts
+# with the machine's timing, an image loaded by a child process say, is not judged); a
+# program the list marks unsteady is skipped without running. Then, against
 # the native picture: `off` and `replay` must be identical (no pixel differs at all), `split`
 # must differ by at most 2 levels everywhere, and `auto` and `mvc` may differ by more than 2
 # levels only inside the quads quadgl drew smooth: the shim also draws, at the photographed
@@ -96,7 +97,7 @@ apps_list "$set" "$@" >"$apps_tmp/list"
 while read -r name args; do
     apps_available "$name" || { echo "apps-photo: $name is not installed: skipped" >&2; continue; }
     found=$((found + 1))
-    if grep -q "^$name  *[^ ]*unsteady" "$apps_root/tools/apps.list"; then
+    if apps_in_set "$name" unsteady; then
         skipped=$((skipped + 1))
         echo "| $name | unsteady in tools/apps.list: skipped |" >>"$out/apps-photo.md"
         echo "$name,native2,,,,,,nondeterministic,,,,," >>"$csv"
