@@ -191,10 +191,15 @@ int qgl__affine_dependency(const double p[4][3], double n[4])
             d1[k] /= e, d2[k] /= e, r[k] /= e;
     }
     cross3(d1, d2, c);
+    double cc = dot_n(c, c, 3);
+    if (qgl__parallelogram(d1, d2, r) && cc > 0 && cc < INFINITY) { /* the diagonals halve each other */
+        n[0] = n[2] = 0.5, n[1] = n[3] = -0.5;
+        return 1;
+    }
     cross3(r, d2, a);
     cross3(r, d1, b);
     /* t d1 - u d2 = r: crossed with d2 and d1, t c = r x d2 and u c = r x d1 */
-    double cc = dot_n(c, c, 3), tc = dot_n(a, c, 3), uc = dot_n(b, c, 3);
+    double tc = dot_n(a, c, 3), uc = dot_n(b, c, 3);
     if (!(cc > 0 && cc < INFINITY && tc > 0.01 * cc && tc < 0.99 * cc && uc > 0.01 * cc && uc < 0.99 * cc))
         return 0; /* also NaN: every comparison fails */
     double t = tc / cc, u = uc / cc;

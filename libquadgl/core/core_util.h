@@ -18,6 +18,15 @@
 /* qgl_affine_dependency, hidden: the GL layer's planner calls it per quad (gl_internal.h). */
 int qgl__affine_dependency(const double p[4][3], double n[4]);
 
+/* Whether corners given by their diagonals d02 = p2 - p0, d13 = p3 - p1 and the edge
+ * d01 = p1 - p0 form a parallelogram (p0 + p2 = p1 + p3, that is d13 = d02 - 2 d01) as these
+ * differences round, so relative to the quad's size: the quads of grids, glyphs and boxes.
+ * False for NaN; callers check what they derive for finiteness and an area. */
+static inline int qgl__parallelogram(const double d02[3], const double d13[3], const double d01[3])
+{
+    return d13[0] == d02[0] - 2 * d01[0] && d13[1] == d02[1] - 2 * d01[1] && d13[2] == d02[2] - 2 * d01[2];
+}
+
 /* max and min of finite values (fmax and fmin are library calls here: they must order NaNs) */
 static inline double qgl__max(double a, double b)
 {

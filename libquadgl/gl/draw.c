@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../core/core_util.h"
 #include "gl_internal.h"
 
 size_t qgl__nquads(qgl_topology topo, size_t n)
@@ -242,20 +243,23 @@ static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p
 int qgl__planar(const double p[4][3])
 {
     double d01[3], d02[3], d13[3], n[3], big = 0, ext = 0;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3; k++)
         d01[k] = p[1][k] - p[0][k], d02[k] = p[2][k] - p[0][k], d13[k] = p[3][k] - p[1][k];
+    n[0] = d02[1] * d13[2] - d02[2] * d13[1];
+    n[1] = d02[2] * d13[0] - d02[0] * d13[2];
+    n[2] = d02[0] * d13[1] - d02[1] * d13[0];
+    double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (qgl__parallelogram(d02, d13, d01) && n2 > 0 && n2 < INFINITY)
+        return 1; /* the test below passes it as well, at several times the cost */
+    for (int k = 0; k < 3; k++)
         for (int c = 0; c < 4; c++) {
             double a = fabs(p[c][k]), e = fabs(p[c][k] - p[0][k]);
             big = a > big ? a : big;
             ext = e > ext ? e : ext;
         }
-    }
     /* each coordinate is off by up to half an ulp; the diagonals' distance by a few of them */
     double tol = ext > 0 && 8 * FLT_EPSILON * big > 1e-6 * ext ? 8 * FLT_EPSILON * big / ext : 1e-6;
-    n[0] = d02[1] * d13[2] - d02[2] * d13[1];
-    n[1] = d02[2] * d13[0] - d02[0] * d13[2];
-    n[2] = d02[0] * d13[1] - d02[1] * d13[0];
-    double h = fabs(n[0] * d01[0] + n[1] * d01[1] + n[2] * d01[2]), nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double h = fabs(n[0] * d01[0] + n[1] * d01[1] + n[2] * d01[2]), nn = sqrt(n2);
     /* the distance between the diagonals' lines, h / nn, against tol times the extent; the
      * core's scaled form where these products leave the range of doubles */
     if (!(isfinite(h) && isfinite(nn) && nn > 1e-290 && ext < 1e75 && ext > 1e-75))

@@ -232,9 +232,45 @@ static void check_dependency(void)
             CHECK(dot * dot >= (1 - 1e-9) * nn * cc, "clip-space dependency not parallel: cos^2 %.12f",
                   dot * dot / (nn * cc));
         }
+    /* parallelograms (p0 + p2 = p1 + p3 in floats, as the planner's corners are): their
+     * diagonals halve each other; one a millionth off is not one */
+    int tested = 0;
+    for (int it = 0; it < 400; it++) {
+        float fp[4][3];
+        double p[4][3], n[4];
+        for (int k = 0; k < 3; k++) {
+            fp[0][k] = (float)(1e4 * urand()), fp[1][k] = fp[0][k] + (float)urand();
+            fp[2][k] = fp[1][k] + (float)urand(), fp[3][k] = (float)((double)fp[0][k] + fp[2][k] - fp[1][k]);
+        }
+        int exact = 1;
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < 3; k++)
+                p[c][k] = fp[c][k];
+        for (int k = 0; k < 3; k++)
+            exact &= p[0][k] + p[2][k] == p[1][k] + p[3][k];
+        if (!exact)
+            continue; /* p3 rounded off the parallelogram */
+        tested++;
+        CHECK(qgl_affine_dependency(p, n) && n[0] == 0.5 && n[1] == -0.5 && n[2] == 0.5 && n[3] == -0.5,
+              "parallelogram: n = %g %g %g %g", n[0], n[1], n[2], n[3]);
+        for (int k = 0; k < 3; k++) /* along an edge: in the plane, off the parallelogram */
+            p[3][k] += 1e-6 * (p[1][k] - p[0][k]);
+        CHECK(qgl_affine_dependency(p, n), "near-parallelogram has no dependency");
+        double worst = 0;
+        for (int k = 0; k < 3; k++) {
+            double s = 0;
+            for (int i = 0; i < 4; i++)
+                s += n[i] * (p[i][k] - p[0][k]);
+            worst = fmax(worst, fabs(s));
+        }
+        CHECK(worst < 1e-9, "near-parallelogram taken for one: residual %g", worst);
+    }
+    CHECK(tested > 100, "only %d exact parallelograms drawn", tested);
+    const double flat[4][3] = {{0, 0, 0}, {1, 0, 0}, {3, 0, 0}, {2, 0, 0}}; /* p0 + p2 = p1 + p3 */
+    double n[4];
+    CHECK(!qgl_affine_dependency(flat, n), "collinear parallelogram given a dependency");
     /* t = 2/7, u = 4/7 */
     const double quad[4][3] = {{0, 0, 0}, {2, 0, 0}, {3, 2, 0}, {0, 1, 0}}, want[4] = {5 / 7., -3 / 7., 2 / 7., -4 / 7.};
-    double n[4];
     CHECK(qgl_affine_dependency(quad, n), "irregular quad has no dependency");
     for (int i = 0; i < 4; i++)
         CHECK(fabs(n[i] - want[i]) < 1e-15, "irregular quad: n[%d] = %.17g, want %.17g", i, n[i], want[i]);
