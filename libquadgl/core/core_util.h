@@ -15,7 +15,7 @@
 /* Orientations of normalized points at or below this are treated as zero (collinear). */
 #define QGL__COLLINEAR_EPS (64.0 * DBL_EPSILON)
 
-/* qgl_affine_dependency, hidden: the GL layer's planner calls it per quad (gl_internal.h). */
+/* qgl_affine_dependency, hidden: the GL layer's planner (gl/draw.c) calls it per quad. */
 int qgl__affine_dependency(const double p[4][3], double n[4]);
 
 /* Whether corners given by their diagonals d02 = p2 - p0, d13 = p3 - p1 and the edge
