@@ -19,7 +19,11 @@
  * never split; with the budget 1000 times larger they do and the pictures part. So are
  * sharper lights, where every term the planner lights the corners with counts: a directional
  * light well off the view axis with a tight highlight, and a spot over the plane seen by a
- * local viewer (some quads split, some not, each picture within 1/255).
+ * local viewer (some quads split, some not, each picture within 1/255). Under these and a
+ * narrow hot spot, quad by quad, the verdict is held to the corners' colours the test lights
+ * itself from GL's lighting equations and the state read back: a quad whose twist is well
+ * inside the bound splits, one far outside does not (a spot direction left unnormalized or a
+ * wrong spot exponent in the planner's lighting fails this; the pictures alone did not).
  * Corners given with their own w (glVertex4f) are held to the same picture.
  * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
  * the planner judges every lit quad rather than leave some untested where this machine's
@@ -150,6 +154,23 @@ static void sharp_lights(int spot)
     glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, spot);
 }
 
+/* For the quad-by-quad check alone: a narrow spot close over the plane with a tight
+ * highlight, seen by a local viewer, so that the corners' twists run from nothing to many
+ * levels across the grid. */
+static void hot_lights(void)
+{
+    static const float posl[4] = {0.3f, 0.2f, 0.45f, 1}, sdir[3] = {-0.2f, 0, -1};
+    static const float white[4] = {0.9f, 0.9f, 0.9f, 1};
+    glLightfv(GL_LIGHT0, GL_POSITION, posl);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glLightfv(GL_LIGHT0, GL_SPECULAR, white);
+    glLightfv(GL_LIGHT0, GL_SPOT_DIRECTION, sdir);
+    glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, 50);
+    glLightf(GL_LIGHT0, GL_SPOT_EXPONENT, 20);
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 40);
+    glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 1);
+}
+
 static void view(void)
 {
     glViewport(0, 0, W, H);
@@ -251,6 +272,111 @@ static void teeth(th_ctx *t, const char *name, int min_bad, int min_worst)
     free(m);
 }
 
+/* The lit colour of grid vertex i as the fixed-function pipeline defines it (one-sided, no
+ * separate specular, lights 0 and 1: those the scenes set), from the lighting state read back from GL: the reference the planner's
+ * own lighting of the corners is held to. */
+static void lit_reference(int i, float out[4])
+{
+    double mv[16], e[3], n[3], v[3] = {0, 0, 1}, c[4];
+    float ma[4], md[4], ms[4], me[4], sh, lma[4];
+    GLint local = 0;
+    glGetDoublev(GL_MODELVIEW_MATRIX, mv);
+    glGetMaterialfv(GL_FRONT, GL_AMBIENT, ma);
+    glGetMaterialfv(GL_FRONT, GL_DIFFUSE, md);
+    glGetMaterialfv(GL_FRONT, GL_SPECULAR, ms);
+    glGetMaterialfv(GL_FRONT, GL_EMISSION, me);
+    glGetMaterialfv(GL_FRONT, GL_SHININESS, &sh);
+    glGetFloatv(GL_LIGHT_MODEL_AMBIENT, lma);
+    glGetIntegerv(GL_LIGHT_MODEL_LOCAL_VIEWER, &local);
+    for (int r = 0; r < 3; r++) /* the view is a rotation and a translation: normals turn alike */
+        e[r] = mv[r] * pos[i][0] + mv[4 + r] * pos[i][1] + mv[8 + r] * pos[i][2] + mv[12 + r],
+        n[r] = mv[r] * nrm[i][0] + mv[4 + r] * nrm[i][1] + mv[8 + r] * nrm[i][2];
+    double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), le = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    for (int r = 0; r < 3; r++)
+        n[r] /= ln, v[r] = local ? -e[r] / le : v[r];
+    for (int k = 0; k < 3; k++)
+        c[k] = me[k] + ma[k] * lma[k];
+    for (int l = 0; l < 2; l++) {
+        GLenum L = GL_LIGHT0 + (GLenum)l;
+        float p[4], sd[3], la[4], ld[4], ls[4], cut, ex, k0, k1, k2;
+        if (!glIsEnabled(L))
+            continue;
+        glGetLightfv(L, GL_POSITION, p), glGetLightfv(L, GL_SPOT_DIRECTION, sd);
+        glGetLightfv(L, GL_AMBIENT, la), glGetLightfv(L, GL_DIFFUSE, ld), glGetLightfv(L, GL_SPECULAR, ls);
+        glGetLightfv(L, GL_SPOT_CUTOFF, &cut), glGetLightfv(L, GL_SPOT_EXPONENT, &ex);
+        glGetLightfv(L, GL_CONSTANT_ATTENUATION, &k0), glGetLightfv(L, GL_LINEAR_ATTENUATION, &k1);
+        glGetLightfv(L, GL_QUADRATIC_ATTENUATION, &k2);
+        double vp[3], att = 1, d = 0;
+        for (int r = 0; r < 3; r++)
+            vp[r] = p[3] != 0 ? p[r] / p[3] - e[r] : p[r];
+        d = sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2]);
+        for (int r = 0; r < 3; r++)
+            vp[r] /= d;
+        if (p[3] != 0)
+            att = 1 / (k0 + k1 * d + k2 * d * d);
+        if (cut != 180) {
+            double sl = sqrt(sd[0] * sd[0] + sd[1] * sd[1] + sd[2] * sd[2]);
+            double cs = -(vp[0] * sd[0] + vp[1] * sd[1] + vp[2] * sd[2]) / sl;
+            att *= cs >= cos(cut * M_PI / 180) ? pow(fmax(cs, 0), ex) : 0;
+        }
+        double nv = n[0] * vp[0] + n[1] * vp[1] + n[2] * vp[2], h[3], hl = 0, nh = 0;
+        for (int r = 0; r < 3; r++)
+            h[r] = vp[r] + v[r], hl += h[r] * h[r];
+        for (int r = 0; r < 3; r++)
+            nh += n[r] * h[r] / sqrt(hl);
+        for (int k = 0; k < 3; k++) {
+            c[k] += att * la[k] * ma[k];
+            if (nv > 0)
+                c[k] += att * (nv * ld[k] * md[k] + (nh > 0 ? pow(nh, sh) : sh == 0) * ls[k] * ms[k]);
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        out[k] = (float)fmin(fmax(c[k], 0), 1);
+    out[3] = md[3];
+}
+
+/* Quad by quad under AUTO, against the reference lighting: a square quad (the grid's, with
+ * one w) splits where its lit corners' twist c0 - c1 + c2 - c3 is within the budget's bound
+ * (0.5/255 for a parallelogram) and is drawn smooth where it is eight times over (where the
+ * planner does not even sample); the reference decides only quads well inside either side.
+ * A planner that lights its corners otherwise than GL (a half vector, a spot's direction)
+ * misjudges some. */
+static void lit_verdicts(th_ctx *t, const char *name)
+{
+    int sure_split = 0, sure_mvc = 0, wrong = 0;
+    qgl_gl_set_method(t->qgl, QGL_METHOD_AUTO);
+    for (int q = 0; q < N * N; q++) {
+        float c[4][4];
+        double twist = 0;
+        for (int k = 0; k < 4; k++)
+            lit_reference(4 * q + k, c[k]);
+        for (int k = 0; k < 4; k++)
+            twist = fmax(twist, fabs((double)c[0][k] - c[1][k] + c[2][k] - c[3][k]));
+        int expect = twist <= 0.45 / 255 ? 1 : twist >= 5.0 / 255 ? 0 : -1;
+        if (expect < 0)
+            continue;
+        qgl_quad_batch b = {.topology = QGL_QUADS, .count = 4};
+        b.position = (qgl_attrib){pos[4 * q], 3, 0, 0};
+        b.color = (qgl_attrib){col[4 * q], 4, 0, 0};
+        b.normal = (qgl_attrib){nrm[4 * q], 3, 0, 0};
+        qgl_gl_reset_stats(t->qgl);
+        qgl_draw_quads(t->qgl, &b);
+        qgl_gl_stats_t st;
+        qgl_gl_stats(t->qgl, &st);
+        sure_split += expect, sure_mvc += !expect;
+        if ((int)st.split != expect) {
+            if (wrong++ < 5)
+                printf("  %s: quad %d twist %.2f/255 %s\n", name, q, twist * 255, expect ? "not split" : "split");
+        }
+    }
+    glFinish();
+    printf("%-28s reference: %d quads surely split, %d surely smooth; misjudged %d\n", name, sure_split, sure_mvc,
+           wrong);
+    th_check(sure_split + sure_mvc >= N * N / 4, "%s: the reference decides too few quads (%d split, %d smooth)",
+             name, sure_split, sure_mvc);
+    th_check(wrong == 0, "%s: %d quads judged against the reference lighting", name, wrong);
+}
+
 /* Bailey's quad: red, blue, green, red corners over most of the screen. */
 static void bailey(th_ctx *t)
 {
@@ -335,7 +461,10 @@ int main(void)
         split = compare(&t, spot ? "lit, spot, local viewer" : "lit, off-axis highlight", 0, 1, 0, 0);
         th_check(split > 0 && split < N * N, "lit%s: %d of %d quads split, expected some", spot ? ", spot" : "",
                  split, N * N);
+        lit_verdicts(&t, spot ? "lit, spot, per quad" : "lit, off-axis, per quad");
     }
+    hot_lights();
+    lit_verdicts(&t, "lit, hot spot, per quad");
     sharp_lights(0); /* the spot's cone and the local viewer off again */
     lights(1, 0);
     normals(-1);
