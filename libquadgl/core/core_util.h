@@ -11,6 +11,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* Orientations of normalized points at or below this are treated as zero (collinear). */
 #define QGL__COLLINEAR_EPS (64.0 * DBL_EPSILON)
@@ -55,12 +57,24 @@ static inline int qgl__exponent_of(double maxabs)
     return e;
 }
 
+/* 2^k, from its bits where it is a normal double (ldexp is a library call, which the planner
+ * would make several times a quad). */
+static inline double qgl__pow2(int k)
+{
+    if (k < -1022 || k > 1023)
+        return ldexp(1.0, k);
+    uint64_t bits = (uint64_t)(k + 1023) << 52;
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
 /* a[i] *= 2^-e for n values, exactly as ldexp(a[i], -e) but by one multiplication (a library
  * call per value costs more than the predicates it serves) wherever 2^-e is a normal double. */
 static inline void qgl__scale_pow2(double *a, int n, int e)
 {
     if (e > -1000 && e < 1000) {
-        double s = ldexp(1.0, -e);
+        double s = qgl__pow2(-e);
         for (int i = 0; i < n; i++)
             a[i] *= s;
     } else {

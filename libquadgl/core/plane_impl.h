@@ -120,12 +120,12 @@ static int FN(frame)(const R pos[4][3], PLANE *out)
     for (int k = 0; k < 3; k++) {
         c[k] = 0;
         for (int i = 0; i < 4; i++)
-            c[k] += LDEXP(pos[i][k], -e0) / 4;
-        out->origin[k] = LDEXP(c[k], e0);
+            c[k] += FN(ldexp)(pos[i][k], -e0) / 4;
+        out->origin[k] = FN(ldexp)(c[k], e0);
     }
     for (int i = 0; i < 4; i++)
         for (int k = 0; k < 3; k++) {
-            d[i][k] = LDEXP(pos[i][k], -e0) - c[k];
+            d[i][k] = FN(ldexp)(pos[i][k], -e0) - c[k];
             m = FABS(d[i][k]) > m ? FABS(d[i][k]) : m;
         }
     if (m == 0)
@@ -163,9 +163,9 @@ static int FN(frame)(const R pos[4][3], PLANE *out)
         out->axis[1][k] = v[k];
     }
     for (int i = 0; i < 4; i++) {
-        out->corner[i][0] = FN(clamp)(LDEXP(FN(dot)(d[i], u), e + e0));
-        out->corner[i][1] = FN(clamp)(LDEXP(FN(dot)(d[i], v), e + e0));
-        out->height[i] = FN(clamp)(LDEXP(FN(dot)(d[i], n), e + e0));
+        out->corner[i][0] = FN(clamp)(FN(ldexp)(FN(dot)(d[i], u), e + e0));
+        out->corner[i][1] = FN(clamp)(FN(ldexp)(FN(dot)(d[i], v), e + e0));
+        out->height[i] = FN(clamp)(FN(ldexp)(FN(dot)(d[i], n), e + e0));
     }
     out->diagonal = FN(diagonal)((const R(*)[3])d);
     return degenerate ? QGL_DEGENERATE : 0;
