@@ -546,6 +546,8 @@ static int gain_within(const double v[4][2], const double *clip[4], const double
 static inline double range_residual(const double n[4], double sn, const double f[4])
 {
     double r = n[0] * f[0] + n[1] * f[1] + n[2] * f[2] + n[3] * f[3];
+    if (sn == 0) /* the offsets vanish (an infinite value then counts, as it should) */
+        return fabs(r);
     double lo = f[0] < f[1] ? f[0] : f[1], hi = f[0] < f[1] ? f[1] : f[0];
     lo = f[2] < lo ? f[2] : lo, hi = f[2] > hi ? f[2] : hi;
     lo = f[3] < lo ? f[3] : lo, hi = f[3] > hi ? f[3] : hi;
@@ -561,12 +563,9 @@ static double residual(const double n[4], double sn, const float *a, int size, c
     const float *cn[4] = {a + (size_t)size * idx[0], a + (size_t)size * idx[1], a + (size_t)size * idx[2],
                           a + (size_t)size * idx[3]};
     for (int k = 0; k < size; k++) {
-        double f[4];
-        for (int c = 0; c < 4; c++) {
-            f[c] = cn[c][k];
-            if (clamp)
-                f[c] = f[c] < 0 ? 0 : f[c] > 1 ? 1 : f[c];
-        }
+        double f[4] = {cn[0][k], cn[1][k], cn[2][k], cn[3][k]};
+        if (clamp)
+            f[0] = qgl__clamp01(f[0]), f[1] = qgl__clamp01(f[1]), f[2] = qgl__clamp01(f[2]), f[3] = qgl__clamp01(f[3]);
         double r = range_residual(n, sn, f);
         worst = r > worst ? r : worst;
     }

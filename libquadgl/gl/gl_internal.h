@@ -661,6 +661,11 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
  * within what rounding the corners to float can do (a small quad far from the origin, as a
  * fine sphere's, is planar only to its coordinates' precision). */
 int qgl__planar(const double p[4][3]);
+/* x clamped to [0, 1] as the pipeline clamps colours (NaN passes through). */
+static inline double qgl__clamp01(double x)
+{
+    return x < 0 ? 0 : x > 1 ? 1 : x;
+}
 void qgl__query_state(qgl_context *ctx, qgl__state *st);
 /* state.c: the 4 x 4 identity, column-major (texture matrices are compared with it). */
 extern const double qgl__identity[16];

@@ -134,11 +134,6 @@ static void normalize3(double a[3])
         a[0] /= l, a[1] /= l, a[2] /= l;
 }
 
-static double clamp01(double x)
-{
-    return x < 0 ? 0 : x > 1 ? 1 : x;
-}
-
 /* One face's colours at one vertex (n already facing it): primary RGBA, then the secondary
  * RGB (zero unless the specular term is separate), clamped as the vertex shader clamps. */
 static void light_vertex(const qgl__key *k, const qgl__lightvals *lv, const float mat[4][4], float shininess,
@@ -190,10 +185,10 @@ static void light_vertex(const qgl__key *k, const qgl__lightvals *lv, const floa
     for (int c = 0; c < 3; c++) {
         double p = mat[0][c] + mat[1][c] * lv->model_ambient[c] + amb[c] * mat[1][c] + dif[c] * mat[2][c];
         double s = spe[c] * mat[3][c];
-        out[c] = (float)clamp01(separate ? p : p + s);
-        out[4 + c] = separate ? (float)clamp01(s) : 0;
+        out[c] = (float)qgl__clamp01(separate ? p : p + s);
+        out[4 + c] = separate ? (float)qgl__clamp01(s) : 0;
     }
-    out[3] = (float)clamp01(mat[2][3]);
+    out[3] = (float)qgl__clamp01(mat[2][3]);
 }
 
 int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
