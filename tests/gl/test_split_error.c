@@ -273,8 +273,8 @@ static void teeth(th_ctx *t, const char *name, int min_bad, int min_worst)
 }
 
 /* The lit colour of grid vertex i as the fixed-function pipeline defines it (one-sided, no
- * separate specular, lights 0 and 1: those the scenes set), from the lighting state read back from GL: the reference the planner's
- * own lighting of the corners is held to. */
+ * separate specular, lights 0 and 1: those the scenes set), from the lighting state read back
+ * from GL: the reference the planner's own lighting of the corners is held to. */
 static void lit_reference(int i, float out[4])
 {
     double mv[16], e[3], n[3], v[3] = {0, 0, 1}, c[4];
