@@ -4,9 +4,8 @@
  * Which is cheapest depends on the driver (on a GPU the shader path is nearly free; on
  * llvmpipe every fragment-shader instruction and every triangle is CPU time), so it is
  * measured rather than assumed: off screen, in a 128 x 128 framebuffer object of our own,
- * with every piece of application state we touch pushed (attributes, client attributes,
- * matrices) or saved (framebuffer, renderbuffer, program, vertex array and buffer bindings)
- * and put back, and everything that could change a draw's cost switched off. Five timed
+ * with every piece of application state we touch saved and put back, and everything that
+ * could change a draw's cost switched off. Five timed
  * draws (each finished with glFinish, the best of two): an empty one (the fixed cost of a
  * draw and a finish, taken off the others), two window-sized quads and 256 quads of
  * 4 x 4 pixels through the shader path and through the split, which give per quad and per
@@ -88,28 +87,42 @@ static int tiles(qgl__verts *v, int n, float fill)
 
 /* ---- the measurement ------------------------------------------------------------------------- */
 
-/* Caps that change what a draw costs; off for the measurement (PushAttrib keeps the app's,
- * but for the last three: primitive restart and rasterizer discard belong to no attribute
- * group, and Mesa's glPopAttrib does not put colour sum back, so they are saved apart). */
+/* Caps that change what a draw costs; off for the measurement. */
 static const GLenum caps_off[] = {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_BLEND, GL_ALPHA_TEST, GL_SCISSOR_TEST,
                                   GL_CULL_FACE, GL_LIGHTING, GL_FOG, GL_COLOR_LOGIC_OP, GL_POLYGON_OFFSET_FILL,
-                                  GL_COLOR_SUM, GL_PRIMITIVE_RESTART, GL_RASTERIZER_DISCARD};
-#define NCAPS (sizeof caps_off / sizeof caps_off[0])
-#define NUNSAVED 3
-
-typedef struct saved {
-    GLint draw_fb, read_fb, rb, program, vao, vbo;
-    GLboolean unsaved[NUNSAVED]; /* the last caps of caps_off, as the application had them */
-} saved;
+                                  GL_POLYGON_STIPPLE, GL_POLYGON_SMOOTH, GL_COLOR_SUM, GL_PRIMITIVE_RESTART,
+                                  GL_RASTERIZER_DISCARD};
 static const GLenum textures_off[] = {GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP,
                                       GL_TEXTURE_RECTANGLE};
+#define NCAPS (sizeof caps_off / sizeof caps_off[0])
+#define NTEXTURES (sizeof textures_off / sizeof textures_off[0])
+#define MAX_OFF 128
+
+/* The application's state that the measurement changes, saved by hand: glPushAttrib would make
+ * the driver allocate its whole attribute record, which Mesa keeps for the rest of the process
+ * (2.6 MB, a tenth of what a smooth program's preloaded heap adds), and it fails, as
+ * glPushMatrix does, where the application's stack is full. Blending and the scissor test are
+ * switched at draw buffer and viewport 0 alone where GL has them per index, so that the others
+ * keep theirs. */
+typedef struct saved {
+    GLint draw_fb, read_fb, rb, program, vao, vbo, active, client, matrix_mode, shade, poly[2];
+    GLfloat viewport[4], matrix[2][16];
+    GLboolean mask[4];
+    int per_buffer, vp_array; /* per draw buffer (GL 3.0), and per viewport (GL 4.1) state */
+    struct {
+        GLenum cap;
+        GLint unit; /* the texture unit of a texture target, else -1 */
+        int indexed;
+    } off[MAX_OFF]; /* what was on and is now off */
+    int noff;
+} saved;
+static const GLenum stacks[2] = {GL_PROJECTION, GL_MODELVIEW};
 
 static int have_entry_points(const struct qgl__gl *gl)
 {
-    const void *need[] = {gl->Enable, gl->Disable, gl->Finish, gl->Viewport, gl->PushAttrib, gl->PopAttrib,
-                          gl->PushClientAttrib, gl->PopClientAttrib, gl->MatrixMode, gl->PushMatrix,
-                          gl->PopMatrix, gl->LoadIdentity, gl->PolygonMode, gl->ShadeModel, gl->ColorMask,
-                          gl->GenFramebuffers, gl->DeleteFramebuffers, gl->BindFramebuffer, gl->GenRenderbuffers,
+    const void *need[] = {gl->Enable, gl->Disable, gl->Finish, gl->Viewport, gl->MatrixMode, gl->LoadIdentity,
+                          gl->LoadMatrixf, gl->PolygonMode, gl->ShadeModel, gl->ColorMask, gl->GenFramebuffers,
+                          gl->DeleteFramebuffers, gl->BindFramebuffer, gl->GenRenderbuffers,
                           gl->DeleteRenderbuffers, gl->BindRenderbuffer, gl->RenderbufferStorage,
                           gl->FramebufferRenderbuffer, gl->CheckFramebufferStatus};
     for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)
@@ -118,60 +131,112 @@ static int have_entry_points(const struct qgl__gl *gl)
     return 1;
 }
 
+static void switch_off(const struct qgl__gl *gl, saved *s, GLenum cap, GLint unit)
+{
+    int indexed = cap == GL_BLEND ? s->per_buffer : cap == GL_SCISSOR_TEST && s->vp_array;
+    if (s->noff == MAX_OFF || !(indexed ? gl->IsEnabledi(cap, 0) : gl->IsEnabled(cap)))
+        return;
+    if (indexed)
+        gl->Disablei(cap, 0);
+    else
+        gl->Disable(cap);
+    s->off[s->noff].cap = cap, s->off[s->noff].unit = unit, s->off[s->noff].indexed = indexed;
+    s->noff++;
+}
+
 static void enter(qgl_context *ctx, saved *s)
 {
     struct qgl__gl *gl = &ctx->gl;
+    GLint vp[4];
+    s->per_buffer = ctx->version >= 30 && gl->IsEnabledi && gl->Enablei && gl->Disablei && gl->ColorMaski &&
+                    gl->GetBooleani_v;
+    s->vp_array = s->per_buffer && (ctx->version >= 41 || qgl__has_extension(ctx, "GL_ARB_viewport_array")) &&
+                  gl->ViewportIndexedf && gl->GetFloati_v;
     gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fb);
     gl->GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fb);
     gl->GetIntegerv(GL_RENDERBUFFER_BINDING, &s->rb);
     gl->GetIntegerv(GL_CURRENT_PROGRAM, &s->program);
     gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
     gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->vbo);
-    for (size_t i = 0; i < NUNSAVED; i++)
-        s->unsaved[i] = gl->IsEnabled(caps_off[NCAPS - NUNSAVED + i]);
-    gl->PushAttrib(GL_ALL_ATTRIB_BITS);
-    gl->PushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
-    static const GLenum stacks[2] = {GL_PROJECTION, GL_MODELVIEW};
-    for (int i = 0; i < 2; i++) {
-        gl->MatrixMode(stacks[i]);
-        gl->PushMatrix();
-        gl->LoadIdentity();
+    gl->GetIntegerv(GL_ACTIVE_TEXTURE, &s->active);
+    gl->GetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &s->client);
+    gl->GetIntegerv(GL_MATRIX_MODE, &s->matrix_mode);
+    gl->GetIntegerv(GL_SHADE_MODEL, &s->shade);
+    gl->GetIntegerv(GL_POLYGON_MODE, s->poly);
+    if (s->vp_array) {
+        gl->GetFloati_v(GL_VIEWPORT, 0, s->viewport);
+    } else {
+        gl->GetIntegerv(GL_VIEWPORT, vp);
+        for (int i = 0; i < 4; i++)
+            s->viewport[i] = (GLfloat)vp[i];
     }
+    if (s->per_buffer)
+        gl->GetBooleani_v(GL_COLOR_WRITEMASK, 0, s->mask);
+    else
+        gl->GetBooleanv(GL_COLOR_WRITEMASK, s->mask);
+    s->noff = 0;
     for (size_t i = 0; i < NCAPS; i++)
-        gl->Disable(caps_off[i]);
+        switch_off(gl, s, caps_off[i], -1);
     for (GLint i = 0; i < ctx->max_clip_planes; i++)
-        gl->Disable(GL_CLIP_PLANE0 + (GLenum)i);
+        switch_off(gl, s, GL_CLIP_PLANE0 + (GLenum)i, -1);
     if (ctx->has_arb_vp)
-        gl->Disable(GL_VERTEX_PROGRAM_ARB);
+        switch_off(gl, s, GL_VERTEX_PROGRAM_ARB, -1);
     if (ctx->has_arb_fp)
-        gl->Disable(GL_FRAGMENT_PROGRAM_ARB);
+        switch_off(gl, s, GL_FRAGMENT_PROGRAM_ARB, -1);
     if (ctx->has_ati_fs)
-        gl->Disable(GL_FRAGMENT_SHADER_ATI);
+        switch_off(gl, s, GL_FRAGMENT_SHADER_ATI, -1);
     for (GLint u = 0; u < ctx->max_units; u++) {
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
-        for (size_t t = 0; t < sizeof textures_off / sizeof textures_off[0]; t++)
-            gl->Disable(textures_off[t]);
+        for (size_t t = 0; t < NTEXTURES; t++)
+            switch_off(gl, s, textures_off[t], u);
     }
     gl->ActiveTexture(GL_TEXTURE0);
+    for (int i = 0; i < 2; i++) {
+        gl->MatrixMode(stacks[i]);
+        gl->GetFloatv(stacks[i] == GL_PROJECTION ? GL_PROJECTION_MATRIX : GL_MODELVIEW_MATRIX, s->matrix[i]);
+        gl->LoadIdentity();
+    }
     gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     gl->ShadeModel(GL_SMOOTH);
-    gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl->Viewport(0, 0, SIZE, SIZE);
+    if (s->per_buffer)
+        gl->ColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    else
+        gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (s->vp_array)
+        gl->ViewportIndexedf(0, 0, 0, SIZE, SIZE);
+    else
+        gl->Viewport(0, 0, SIZE, SIZE);
 }
 
 static void leave(qgl_context *ctx, const saved *s)
 {
     struct qgl__gl *gl = &ctx->gl;
-    static const GLenum stacks[2] = {GL_PROJECTION, GL_MODELVIEW};
     for (int i = 0; i < 2; i++) {
         gl->MatrixMode(stacks[i]);
-        gl->PopMatrix();
+        gl->LoadMatrixf(s->matrix[i]);
     }
-    gl->PopClientAttrib();
-    gl->PopAttrib();
-    for (size_t i = 0; i < NUNSAVED; i++)
-        if (s->unsaved[i])
-            gl->Enable(caps_off[NCAPS - NUNSAVED + i]);
+    gl->MatrixMode((GLenum)s->matrix_mode);
+    for (int i = 0; i < s->noff; i++) {
+        if (s->off[i].unit >= 0)
+            gl->ActiveTexture(GL_TEXTURE0 + (GLenum)s->off[i].unit);
+        if (s->off[i].indexed)
+            gl->Enablei(s->off[i].cap, 0);
+        else
+            gl->Enable(s->off[i].cap);
+    }
+    gl->ActiveTexture((GLenum)s->active);
+    gl->ClientActiveTexture((GLenum)s->client);
+    gl->PolygonMode(GL_FRONT, (GLenum)s->poly[0]);
+    gl->PolygonMode(GL_BACK, (GLenum)s->poly[1]);
+    gl->ShadeModel((GLenum)s->shade);
+    if (s->per_buffer)
+        gl->ColorMaski(0, s->mask[0], s->mask[1], s->mask[2], s->mask[3]);
+    else
+        gl->ColorMask(s->mask[0], s->mask[1], s->mask[2], s->mask[3]);
+    if (s->vp_array)
+        gl->ViewportIndexedf(0, s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    else
+        gl->Viewport((GLint)s->viewport[0], (GLint)s->viewport[1], (GLsizei)s->viewport[2], (GLsizei)s->viewport[3]);
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fb);
     gl->BindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fb);
     gl->BindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->rb);

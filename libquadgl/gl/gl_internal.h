@@ -159,14 +159,16 @@
     X(void, Disable, (GLenum)) \
     X(void, Finish, (void)) \
     X(void, Viewport, (GLint, GLint, GLsizei, GLsizei)) \
-    X(void, PushAttrib, (GLbitfield)) \
-    X(void, PopAttrib, (void)) \
-    X(void, PushClientAttrib, (GLbitfield)) \
-    X(void, PopClientAttrib, (void)) \
     X(void, MatrixMode, (GLenum)) \
-    X(void, PushMatrix, (void)) \
-    X(void, PopMatrix, (void)) \
     X(void, LoadIdentity, (void)) \
+    X(void, LoadMatrixf, (const GLfloat *)) \
+    X(GLboolean, IsEnabledi, (GLenum, GLuint)) \
+    X(void, Enablei, (GLenum, GLuint)) \
+    X(void, Disablei, (GLenum, GLuint)) \
+    X(void, ColorMaski, (GLuint, GLboolean, GLboolean, GLboolean, GLboolean)) \
+    X(void, GetBooleani_v, (GLenum, GLuint, GLboolean *)) \
+    X(void, ViewportIndexedf, (GLuint, GLfloat, GLfloat, GLfloat, GLfloat)) \
+    X(void, GetFloati_v, (GLenum, GLuint, GLfloat *)) \
     X(void, PolygonMode, (GLenum, GLenum)) \
     X(void, ShadeModel, (GLenum)) \
     X(void, ColorMask, (GLboolean, GLboolean, GLboolean, GLboolean)) \

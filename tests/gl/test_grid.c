@@ -16,7 +16,9 @@
  * non-planar quads (the shader path) in one batch, against MVC_PLANE, no pixel more than one
  * level apart. Calibration: a measured calibration is valid only
  * within 20 ms of timed draws, and odd given figures (negative) leave the costs invalid, so
- * that AUTO draws a large non-affine quad with the shader path. */
+ * that AUTO draws a large non-affine quad with the shader path. The measurement, made with
+ * every cap it switches off on, per-index state, moved matrices and full attribute and matrix
+ * stacks, must leave all of it as it was and raise no GL error. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -242,10 +244,140 @@ static void seam(th_ctx *t, qgl_method left, qgl_method right, double amp_left, 
     th_check(jumps == 0, "%s: %d colour jumps across the shared edge", name, jumps);
 }
 
+/* The state the calibration switches off or moves, as an application may have it, read back
+ * whole: caps (texture targets per unit), draw buffer 1's blending and mask and viewport 1
+ * (which GL keeps per index), matrices, modes, bindings and the stacks' depths. */
+static const GLenum caps[] = {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_BLEND, GL_ALPHA_TEST, GL_SCISSOR_TEST,
+                              GL_CULL_FACE, GL_LIGHTING, GL_FOG, GL_COLOR_LOGIC_OP, GL_POLYGON_OFFSET_FILL,
+                              GL_POLYGON_STIPPLE, GL_POLYGON_SMOOTH, GL_COLOR_SUM, GL_PRIMITIVE_RESTART,
+                              GL_RASTERIZER_DISCARD, GL_CLIP_PLANE0, GL_CLIP_PLANE3};
+static const GLenum targets[] = {GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP,
+                                 GL_TEXTURE_RECTANGLE};
+static const struct {
+    GLenum e;
+    int n;
+} values[] = {{GL_VIEWPORT, 4}, {GL_POLYGON_MODE, 2}, {GL_SHADE_MODEL, 1}, {GL_COLOR_WRITEMASK, 4},
+              {GL_ACTIVE_TEXTURE, 1}, {GL_CLIENT_ACTIVE_TEXTURE, 1}, {GL_MATRIX_MODE, 1},
+              {GL_MODELVIEW_MATRIX, 16}, {GL_PROJECTION_MATRIX, 16}, {GL_MODELVIEW_STACK_DEPTH, 1},
+              {GL_PROJECTION_STACK_DEPTH, 1}, {GL_ATTRIB_STACK_DEPTH, 1}, {GL_CLIENT_ATTRIB_STACK_DEPTH, 1},
+              {GL_CURRENT_PROGRAM, 1}, {GL_VERTEX_ARRAY_BINDING, 1}, {GL_ARRAY_BUFFER_BINDING, 1},
+              {GL_DRAW_FRAMEBUFFER_BINDING, 1}, {GL_READ_FRAMEBUFFER_BINDING, 1}, {GL_RENDERBUFFER_BINDING, 1},
+              {GL_CURRENT_COLOR, 4}};
+#define NCAPS (sizeof caps / sizeof caps[0])
+#define NTARGETS (sizeof targets / sizeof targets[0])
+enum { UNITS = 4, NVALUES = 60 + 4 + 4 + 1 + NCAPS + UNITS * NTARGETS }; /* values[], then the indexed and caps */
+
+static int read_state(float *out)
+{
+    int n = 0;
+    GLint active;
+    GLboolean mask[4];
+    for (size_t i = 0; i < sizeof values / sizeof values[0]; i++)
+        glGetFloatv(values[i].e, out + n), n += values[i].n;
+    glGetFloati_v(GL_VIEWPORT, 1, out + n), n += 4;
+    glGetBooleani_v(GL_COLOR_WRITEMASK, 1, mask);
+    for (int i = 0; i < 4; i++)
+        out[n++] = mask[i];
+    out[n++] = glIsEnabledi(GL_BLEND, 1);
+    for (size_t i = 0; i < NCAPS; i++)
+        out[n++] = glIsEnabled(caps[i]);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    for (int u = 0; u < UNITS; u++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        for (size_t i = 0; i < NTARGETS; i++)
+            out[n++] = glIsEnabled(targets[i]);
+    }
+    glActiveTexture((GLenum)active);
+    return n;
+}
+
+static void app_state(void)
+{
+    GLint depth;
+    static const GLenum stacks[2][2] = {{GL_PROJECTION, GL_MAX_PROJECTION_STACK_DEPTH},
+                                        {GL_MODELVIEW, GL_MAX_MODELVIEW_STACK_DEPTH}};
+    for (int i = 0; i < 2; i++) {
+        glMatrixMode(stacks[i][0]);
+        glGetIntegerv(stacks[i][1], &depth);
+        for (int d = 1; d < depth; d++)
+            glPushMatrix();
+        glRotatef(20.0f + 10.0f * (float)i, 0.3f, 0.4f, 0.5f);
+    }
+    glGetIntegerv(GL_MAX_ATTRIB_STACK_DEPTH, &depth);
+    for (int d = 0; d < depth; d++)
+        glPushAttrib(GL_CURRENT_BIT);
+    glGetIntegerv(GL_MAX_CLIENT_ATTRIB_STACK_DEPTH, &depth);
+    for (int d = 0; d < depth; d++)
+        glPushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
+    for (size_t i = 0; i < NCAPS; i++)
+        glEnable(caps[i]);
+    glDisablei(GL_BLEND, 1);
+    for (int u = 0; u < UNITS; u++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        glEnable(targets[u]);
+        glEnable(targets[(u + 2) % 5]);
+    }
+    glActiveTexture(GL_TEXTURE2);
+    glClientActiveTexture(GL_TEXTURE1);
+    glMatrixMode(GL_TEXTURE);
+    glPolygonMode(GL_FRONT, GL_LINE);
+    glPolygonMode(GL_BACK, GL_POINT);
+    glShadeModel(GL_FLAT);
+    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+    glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
+    glViewport(3, 5, 70, 40);
+    glViewportIndexedf(1, 1.5f, 2.5f, 33.0f, 44.0f);
+    glColor4f(0.1f, 0.2f, 0.3f, 0.4f);
+}
+
+static void app_state_undo(void)
+{
+    GLint depth;
+    glGetIntegerv(GL_ATTRIB_STACK_DEPTH, &depth);
+    while (depth--)
+        glPopAttrib();
+    glGetIntegerv(GL_CLIENT_ATTRIB_STACK_DEPTH, &depth);
+    while (depth--)
+        glPopClientAttrib();
+    for (int i = 0; i < 2; i++) {
+        glMatrixMode(i ? GL_MODELVIEW : GL_PROJECTION);
+        glGetIntegerv(i ? GL_MODELVIEW_STACK_DEPTH : GL_PROJECTION_STACK_DEPTH, &depth);
+        while (depth-- > 1)
+            glPopMatrix();
+        glLoadIdentity();
+    }
+    for (size_t i = 0; i < NCAPS; i++)
+        glDisable(caps[i]);
+    for (int u = 0; u < UNITS; u++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        for (size_t i = 0; i < NTARGETS; i++)
+            glDisable(targets[i]);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glClientActiveTexture(GL_TEXTURE0);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glShadeModel(GL_SMOOTH);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glViewport(0, 0, W, H);
+}
+
 static void calibration(th_ctx *t)
 {
     qgl_gl_costs_t c;
-    qgl_gl_costs(t->qgl, &c);
+    float before[NVALUES], after[NVALUES];
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    app_state();
+    int n = read_state(before);
+    th_check(glGetError() == GL_NO_ERROR, "setting the application's state raised an error");
+    qgl_gl_costs(t->qgl, &c); /* the first measurement of this renderer in the process */
+    th_check(c.ms + c.warm_ms > 0, "no calibration was measured");
+    GLenum err = glGetError();
+    th_check(err == GL_NO_ERROR, "the calibration raised GL error 0x%x", err);
+    read_state(after);
+    for (int i = 0; i < n; i++)
+        th_check(before[i] == after[i], "the calibration changed state value %d: %g -> %g", i, before[i], after[i]);
+    app_state_undo();
     printf("calibration: valid %d, %.2f ms timed (+ %.0f ms first draws): %.0f ns/quad + %.2f ns/px shader, "
            "%.2f ns/px split, %.0f ns/triangle grid\n",
            c.valid, c.ms, c.warm_ms, c.mvc_quad_ns, c.mvc_px_ns, c.split_px_ns, c.grid_tri_ns);
