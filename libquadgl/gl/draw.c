@@ -362,7 +362,7 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
                       const double *clip[4], const double px[4][2], int invisible, const qgl__facts *facts, size_t q,
                       int *planar)
 {
-    int one_material = !st->pv_material || qgl__same_material(v, idx);
+    int one_material = !st->pv_material || st->quad_materials || qgl__same_material(v, idx);
     double p[4][3];
     if (!object_corners(v, idx, p))
         return *planar = 0;
@@ -1040,9 +1040,10 @@ static void recount_as_fallback(qgl_context *ctx, size_t nq)
 static void replay_vertex(struct qgl__gl *gl, const qgl__verts *v, size_t i)
 {
     unsigned m = v->mask;
-    for (int a = 0; a < QGL__NATTR; a++)
-        if (m & (1u << a))
-            qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
+    for (unsigned b = m & QGL__A_ATTRIBS; b; b &= b - 1) { /* the attributes given: one or two */
+        int a = __builtin_ctz(b);
+        qgl__set_current(gl, a, v->attr[a] + (size_t)qgl__attribs[a].floats * i);
+    }
     if (m & QGL__A_EDGE)
         gl->EdgeFlag(v->edge[i]);
     gl->Vertex4fv(v->pos + 4 * i);
@@ -1521,6 +1522,16 @@ static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl
     return 1;
 }
 
+/* Whether every change applies from a quad's first corner on (GL_QUADS: vertex 4q), as where
+ * a program sets materials between its glBegin/glEnd pairs. */
+static int changes_between_quads(const qgl__change *chg, size_t nchg)
+{
+    for (size_t c = 0; c < nchg; c++)
+        if (chg[c].vertex % 4)
+            return 0;
+    return 1;
+}
+
 static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
                       const qgl__change *chg, size_t nchg)
 {
@@ -1538,6 +1549,7 @@ static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, 
         ctx->shader_level != 120 && per_vertex_materials(ctx, v, chg, nchg, &with_mat)) {
         v = &with_mat;
         pv_changes = 1;
+        st.quad_materials = topo == QGL_QUADS && changes_between_quads(chg, nchg);
     }
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
         st.ffp.flags |= QGL__KF_MATERIAL;

@@ -450,6 +450,8 @@ typedef struct qgl__state {
     int pv_material;          /* lit quads with per-vertex materials: the split draws a run of
                                  quads with one material, so only quads whose corners share one
                                  may take it */
+    int quad_materials;       /* with pv_material: the batch's material changes all fall between
+                                 quads, so every quad's corners share one (no comparison) */
     int lit_cpu;              /* smooth fixed-function lighting alone makes the per-vertex work
                                  non-affine: light.c computes the corners' colours */
     int lit_by_inputs;        /* the per-vertex work is a function of the captured attributes

@@ -541,6 +541,7 @@ static void derive(qgl_context *ctx, qgl__state *st)
     st->lit_cpu = !st->own_pipeline && st->ffp_ok && (st->ffp.flags & QGL__KF_LIGHTING) && st->shade_model != GL_FLAT &&
                   !normal_texgen(&st->ffp);
     st->pv_material = 0;
+    st->quad_materials = 0;
 }
 
 void qgl__state_track(qgl_context *ctx)
