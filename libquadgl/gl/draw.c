@@ -48,9 +48,12 @@ static void transform(const double m[16], const float p[4], double out[4])
         out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r] * p[3];
 }
 
-/* Every vertex's clip position: the hot loop of planning many small quads, written so that
- * the compiler can keep the matrix in registers and vectorize the rows (same sums, in the
- * same order, as transform). */
+/* Every vertex's clip position: the hot loop of planning many small quads. The matrix's
+ * columns stay in registers and the four rows are one vector expression (the same sums, in
+ * the same order, as transform: each lane is one row, with no contraction), which the
+ * compiler left scalar, the inner loop rolled, when written per row. */
+typedef double qgl__v4d __attribute__((vector_size(32)));
+
 #if defined(__x86_64__) && defined(__GNUC__) && defined(__has_attribute)
 #if __has_attribute(target_clones)
 __attribute__((target_clones("avx2", "default")))
@@ -58,10 +61,11 @@ __attribute__((target_clones("avx2", "default")))
 #endif
 static void transform_all(const double m[16], const float *p, size_t n, double *out)
 {
+    qgl__v4d c[4];
+    memcpy(c, m, sizeof c);
     for (size_t i = 0; i < n; i++, p += 4, out += 4) {
-        double x = p[0], y = p[1], z = p[2], w = p[3];
-        for (int r = 0; r < 4; r++)
-            out[r] = m[r] * x + m[4 + r] * y + m[8 + r] * z + m[12 + r] * w;
+        qgl__v4d r = c[0] * (double)p[0] + c[1] * (double)p[1] + c[2] * (double)p[2] + c[3] * (double)p[3];
+        memcpy(out, &r, sizeof r);
     }
 }
 
