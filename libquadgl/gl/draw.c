@@ -195,8 +195,9 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     return qgl_split_is_exact(p, packed, n, 1e-5);
 }
 
-/* Corner c's captured attributes, concatenated (positions excluded); returns the count. */
-static int corner_inputs(const qgl__verts *v, size_t i, float *out)
+/* Corner c's captured attributes, concatenated (positions excluded), its material too where
+ * asked; returns the count. */
+static int corner_inputs(const qgl__verts *v, size_t i, int materials, float *out)
 {
     int k = 0;
     for (int a = 0; a < QGL__NATTR; a++)
@@ -205,7 +206,7 @@ static int corner_inputs(const qgl__verts *v, size_t i, float *out)
             memcpy(out + k, v->attr[a] + (size_t)n * i, (size_t)n * sizeof(float));
             k += n;
         }
-    if (v->mask & QGL__A_MATERIAL) {
+    if ((v->mask & QGL__A_MATERIAL) && materials) {
         memcpy(out + k, v->mat + QGL__MATERIAL_FLOATS * i, QGL__MATERIAL_FLOATS * sizeof(float));
         k += QGL__MATERIAL_FLOATS;
     }
@@ -216,13 +217,13 @@ static int corner_inputs(const qgl__verts *v, size_t i, float *out)
  * attributes is a combination of the groups' indicators (1 on the group, 0 elsewhere), so it
  * is affine whenever they all are. Two corners sharing a normal on each long side of a
  * cylinder's quad are the common case: smooth lighting is then exactly the split. */
-static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p[4][3])
+static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p[4][3], int materials)
 {
     enum { MAXIN = 4 + 3 + 3 + 1 + QGL__MATERIAL_FLOATS + 4 * QGL_MAX_TEXUNITS };
     float in[4][MAXIN];
     int n = 0, group[4], ngroups = 0;
     for (int c = 0; c < 4; c++)
-        n = corner_inputs(v, idx[c], in[c]);
+        n = corner_inputs(v, idx[c], materials, in[c]);
     for (int c = 0; c < 4; c++) {
         group[c] = ngroups;
         for (int d = 0; d < c; d++)
@@ -322,7 +323,7 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q)
         return 0;
     uint16_t f = QGL__F_PLANAR;
     unsigned m = v->mask;
-    f |= quad_grouped(v, idx, p) ? QGL__F_GROUPED : 0;
+    f |= quad_grouped(v, idx, p, 1) ? QGL__F_GROUPED : 0;
     f |= class_affine(p, (m & QGL__A_COLOR) ? v->col : NULL, 4, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
     f |= class_affine(p, (m & QGL__A_COLOR2) ? v->col2 : NULL, 3, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
     f |= class_affine(p, (m & QGL__A_FOG) ? v->fog : NULL, 1, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
@@ -381,7 +382,7 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     }
     int exact = split_is_exact(ctx, st, v, idx, clip, px, p, invisible, planar);
     if (!exact && *planar && st->nonaffine && st->lit_by_inputs)
-        exact = quad_grouped(v, idx, p);
+        exact = quad_grouped(v, idx, p, !st->quad_materials); /* one material: no group by it */
     /* lit corners, not grouped: judged by their colours, which light.c computes */
     if (!exact && *planar && st->nonaffine && invisible && st->lit_cpu)
         exact = split_invisible(ctx, st, v, idx, clip, px, p);
@@ -1502,7 +1503,7 @@ void qgl__matrun_to(struct qgl__gl *gl, qgl__matrun *r, size_t vertex)
  * with its own material in one draw, as fixed function does per vertex, instead of one draw
  * per change. 0 without memory (the runs are then cut at each change). */
 static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl__change *chg, size_t nchg,
-                                qgl__verts *out)
+                                size_t step, qgl__verts *out)
 {
     qgl__verts *m = &ctx->pvmat;
     float cur[QGL__MATERIAL_FLOATS] = {0};
@@ -1515,7 +1516,7 @@ static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl
         ctx->gl.GetMaterialfv(face, GL_SHININESS, cur + 32 + f);
     }
     size_t c = 0;
-    for (size_t i = 0; i < v->n; i++) {
+    for (size_t i = 0; i < v->n; i += step) {
         for (; c < nchg && chg[c].vertex <= i; c++)
             material_change(cur, &chg[c]);
         memcpy(m->mat + QGL__MATERIAL_FLOATS * i, cur, sizeof cur);
@@ -1527,13 +1528,23 @@ static int per_vertex_materials(qgl_context *ctx, const qgl__verts *v, const qgl
 }
 
 /* Whether every change applies from a quad's first corner on (GL_QUADS: vertex 4q), as where
- * a program sets materials between its glBegin/glEnd pairs. */
+ * a program sets materials between its glBegin/glEnd pairs. Each quad then has one material,
+ * and per_vertex_materials writes it at the first corner alone: the planner reads no other
+ * (quad_materials), and the other corners are filled only for a draw that uploads them. */
 static int changes_between_quads(const qgl__change *chg, size_t nchg)
 {
     for (size_t c = 0; c < nchg; c++)
         if (chg[c].vertex % 4)
             return 0;
     return 1;
+}
+
+static void fill_quad_materials(const qgl__verts *v)
+{
+    for (size_t i = 0; i + 4 <= v->n; i += 4)
+        for (size_t c = 1; c < 4; c++)
+            memcpy(v->mat + QGL__MATERIAL_FLOATS * (i + c), v->mat + QGL__MATERIAL_FLOATS * i,
+                   QGL__MATERIAL_FLOATS * sizeof(float));
 }
 
 static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, const qgl__facts *facts, unsigned flags,
@@ -1549,11 +1560,12 @@ static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, 
     qgl__query_state(ctx, &st);
     qgl__verts with_mat;
     int pv_changes = 0;
+    int between = topo == QGL_QUADS && changes_between_quads(chg, nchg);
     if (nchg && (st.ffp.flags & QGL__KF_LIGHTING) && !(v->mask & QGL__A_MATERIAL) && ctx->has_vao &&
-        ctx->shader_level != 120 && per_vertex_materials(ctx, v, chg, nchg, &with_mat)) {
+        ctx->shader_level != 120 && per_vertex_materials(ctx, v, chg, nchg, between ? 4 : 1, &with_mat)) {
         v = &with_mat;
         pv_changes = 1;
-        st.quad_materials = topo == QGL_QUADS && changes_between_quads(chg, nchg);
+        st.quad_materials = between;
     }
     if ((v->mask & QGL__A_MATERIAL) && (st.ffp.flags & QGL__KF_LIGHTING)) {
         st.ffp.flags |= QGL__KF_MATERIAL;
@@ -1581,6 +1593,8 @@ static int draw_batch(qgl_context *ctx, const qgl__verts *v, qgl_topology topo, 
     for (size_t q = 0; q < nq && !arrays; q++)
         arrays = !replayed(ctx, ctx->path[q], flags);
     saved sv;
+    if (arrays && st.quad_materials)
+        fill_quad_materials(v);
     if (arrays) {
         save(ctx, &st, (flags & QGL__DRAW_IMMEDIATE) ? 0 : v->mask, &sv);
         if (!upload(ctx, v, topo == QGL_QUAD_STRIP ? nq : 0)) {

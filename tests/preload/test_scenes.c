@@ -906,6 +906,46 @@ static void scene_material_change(pt_run *r)
     r->min_quads = 2;
 }
 
+/* glMaterial once per quad inside one glBegin(GL_QUADS), before its first vertex (as programs
+ * colour the faces of a lit model): each quad has one material at its four corners, which
+ * the GL layer then keeps at the quad's first corner alone and copies to the others only for
+ * a draw that uploads them. The corners' normals tilt, so the lit colours are far from affine
+ * and the shader path draws the quads: each must show its own material, interpolated by the
+ * mean value weights. A directional light along z with no ambient lights a corner with its
+ * material times n_z. */
+static void scene_quad_materials(pt_run *r)
+{
+    static const float dir[4] = {0, 0, 1, 0}, none[4] = {0, 0, 0, 1}, white[4] = {1, 1, 1, 1};
+    static const float nz[4] = {0.6f, 0.6f, 1.0f, 0.6f};
+    static const float mat[3][4] = {{0.9f, 0.3f, 0.2f, 1}, {0.2f, 0.8f, 0.3f, 1}, {0.3f, 0.4f, 0.9f, 1}};
+    float lit[3][4][4];
+    pt_begin_frame();
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glLightfv(GL_LIGHT0, GL_AMBIENT, none);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+    glLightModelfv(GL_LIGHT_MODEL_AMBIENT, none);
+    glBegin(GL_QUADS);
+    for (int q = 0; q < 3; q++) {
+        glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, mat[q]);
+        for (int i = 0; i < 4; i++) {
+            float sxy = sqrtf(1 - nz[i] * nz[i]);
+            glNormal3f(i & 1 ? sxy : 0, i & 1 ? 0 : sxy, nz[i]);
+            glVertex2fv(Q[q][i]);
+            for (int k = 0; k < 3; k++)
+                lit[q][i][k] = mat[q][k] * nz[i];
+            lit[q][i][3] = 1;
+        }
+    }
+    glEnd();
+    for (int q = 0; q < 3; q++)
+        pt_expect(r, Q[q], lit[q], 0);
+    glDisable(GL_LIGHTING);
+    r->checks_reference = 1;
+    r->min_quads = 3;
+}
+
 /* The material state as values to compare with the driver's (bit patterns of the floats). */
 static void material_values(pt_run *r)
 {
@@ -1313,6 +1353,7 @@ static const pt_scene scenes[] = {
     {"batch_direct", scene_batch_direct},
     {"materials", scene_materials},
     {"material_change", scene_material_change},
+    {"quad_materials", scene_quad_materials},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
     {"strip_blend", scene_strip_blend},
