@@ -868,12 +868,10 @@ static void scene_materials(pt_run *r)
  * invisible. Then the specular turns on: the corner facing the light is 100 levels brighter
  * than the others, which the split shows as a crease; judged with the old material, the quad
  * would be split and differ from the reference. */
-static void scene_material_change(pt_run *r)
+/* Light 0 white along z (as the viewer), with no ambient light anywhere. */
+static void light_along_z(void)
 {
     static const float dir[4] = {0, 0, 1, 0}, white[4] = {1, 1, 1, 1}, none[4] = {0, 0, 0, 1};
-    static const float dim[4] = {0.004f, 0.004f, 0.004f, 1}, shiny[4] = {1, 1, 1, 1};
-    static const float nz[4] = {0.6f, 0.6f, 1.0f, 0.6f};
-    pt_begin_frame();
     glEnable(GL_LIGHTING);
     glEnable(GL_LIGHT0);
     glLightfv(GL_LIGHT0, GL_POSITION, dir);
@@ -881,6 +879,24 @@ static void scene_material_change(pt_run *r)
     glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
     glLightfv(GL_LIGHT0, GL_SPECULAR, white);
     glLightModelfv(GL_LIGHT_MODEL_AMBIENT, none);
+}
+
+/* Corner i's unit normal, tilted off z to n_z = tilt_nz[i], towards x or y by turns. */
+static const float tilt_nz[4] = {0.6f, 0.6f, 1.0f, 0.6f};
+
+static void tilted_normal(int i)
+{
+    float sxy = sqrtf(1 - tilt_nz[i] * tilt_nz[i]);
+    glNormal3f(i & 1 ? sxy : 0, i & 1 ? 0 : sxy, tilt_nz[i]);
+}
+
+static void scene_material_change(pt_run *r)
+{
+    static const float none[4] = {0, 0, 0, 1};
+    static const float dim[4] = {0.004f, 0.004f, 0.004f, 1}, shiny[4] = {1, 1, 1, 1};
+    const float *nz = tilt_nz;
+    pt_begin_frame();
+    light_along_z();
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, none);
     glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, dim);
     glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, none);
@@ -891,8 +907,7 @@ static void scene_material_change(pt_run *r)
         float lit[4][4];
         glBegin(GL_QUADS);
         for (int i = 0; i < 4; i++) {
-            float sxy = sqrtf(1 - nz[i] * nz[i]);
-            glNormal3f(i & 1 ? sxy : 0, i & 1 ? 0 : sxy, nz[i]);
+            tilted_normal(i);
             glVertex2fv(Q[q][i]);
             float c = dim[0] * nz[i] + (q == 1 ? nz[i] : 0);
             lit[i][0] = lit[i][1] = lit[i][2] = c > 1 ? 1 : c;
@@ -915,26 +930,18 @@ static void scene_material_change(pt_run *r)
  * material times n_z. */
 static void scene_quad_materials(pt_run *r)
 {
-    static const float dir[4] = {0, 0, 1, 0}, none[4] = {0, 0, 0, 1}, white[4] = {1, 1, 1, 1};
-    static const float nz[4] = {0.6f, 0.6f, 1.0f, 0.6f};
     static const float mat[3][4] = {{0.9f, 0.3f, 0.2f, 1}, {0.2f, 0.8f, 0.3f, 1}, {0.3f, 0.4f, 0.9f, 1}};
     float lit[3][4][4];
     pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
-    glLightfv(GL_LIGHT0, GL_POSITION, dir);
-    glLightfv(GL_LIGHT0, GL_AMBIENT, none);
-    glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
-    glLightModelfv(GL_LIGHT_MODEL_AMBIENT, none);
+    light_along_z(); /* the material's specular is GL's default, black */
     glBegin(GL_QUADS);
     for (int q = 0; q < 3; q++) {
         glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, mat[q]);
         for (int i = 0; i < 4; i++) {
-            float sxy = sqrtf(1 - nz[i] * nz[i]);
-            glNormal3f(i & 1 ? sxy : 0, i & 1 ? 0 : sxy, nz[i]);
+            tilted_normal(i);
             glVertex2fv(Q[q][i]);
             for (int k = 0; k < 3; k++)
-                lit[q][i][k] = mat[q][k] * nz[i];
+                lit[q][i][k] = mat[q][k] * tilt_nz[i];
             lit[q][i][3] = 1;
         }
     }
