@@ -100,7 +100,7 @@ static const GLenum textures_off[] = {GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_3
 
 /* The application's state that the measurement changes, saved by hand: glPushAttrib would make
  * the driver allocate its whole attribute record, which Mesa keeps for the rest of the process
- * (2.6 MB allocated, about 1 MB of it resident in peepers), and it fails, as
+ * (2.6 MB allocated in peepers), and it fails, as
  * glPushMatrix does, where the application's stack is full. Blending and the scissor test are
  * switched at draw buffer and viewport 0 alone where GL has them per index, so that the others
  * keep theirs. */
