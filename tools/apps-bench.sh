@@ -21,7 +21,11 @@
 # the shader path, subdiv: the grid or CPU fallback); a program is "split" when no quad took
 # a smooth path and "smooth" when most did. The column "auto, CPU" is the same ratio in
 # frames per second of the process's own CPU time, which other load on the machine moves
-# less (it leaves out the X server's work and the time spent waiting for it). --mvc adds the
+# less (it leaves out the X server's work and the time spent waiting for it). "longest frame"
+# is the longest time between two swaps of a run, "first frame" the time from the program's
+# start to the end of its first swap (loading, quadgl's calibration and first shaders), each
+# the median over the runs, natively and under auto: a stall or a slow start is what a user
+# notices that a frame rate hides. --mvc adds the
 # mvc column; --quick is --seconds 2 --reps 1. Targets printed against `auto`: every "split"
 # program >= 0.97x, the median >= 0.98x, none below 0.9x, "smooth" programs >= 0.9x.
 #
@@ -71,9 +75,10 @@ export APPSHIM_FREEZE=$freeze
 cells="native $methods"
 ncells=$(echo "$cells" | wc -w)
 csv="$out/$base.csv"
-echo "program,method,run,exit,frames,seconds,fps,rss_kib,cpu_s,quads,mvc,split,subdiv,passthrough" >"$csv"
+echo "program,method,run,exit,frames,seconds,fps,rss_kib,cpu_s,longest_ms,first_ms,quads,mvc,split,subdiv,passthrough" >"$csv"
 : >"$apps_tmp/ratios"
 : >"$apps_tmp/cpu"
+: >"$apps_tmp/longest"
 : >"$apps_tmp/statlines"
 start=$(date +%s)
 
@@ -102,18 +107,26 @@ run_cell() {
         echo "$rc_st" >"$tmp/auto.stats"
     fi
     if [ $rc -eq 0 ] && [ -s "$rc_res" ]; then
-        read -r frames seconds rss cpu <"$rc_res"
+        read -r frames seconds rss cpu longest first <"$rc_res"
         fps=$(awk -v f="$frames" -v s="$seconds" 'BEGIN { printf "%.3f", f / s }')
         echo "$fps" >>"$tmp/$rc_cell.fps"
         echo "$rss" >>"$tmp/$rc_cell.rss"
         awk -v f="$frames" -v c="$cpu" 'BEGIN { if (c > 0) printf "%.3f\n", f / c }' >>"$tmp/$rc_cell.cpf"
+        echo "$longest" >>"$tmp/$rc_cell.longest"
+        echo "$first" >>"$tmp/$rc_cell.first"
     else
-        frames="" seconds="" fps="" rss="" cpu=""
+        frames="" seconds="" fps="" rss="" cpu="" longest="" first=""
         echo "$rc" >"$tmp/$rc_cell.failed"
         echo "apps-bench: $1 ($rc_cell, run $rc_k) exited with $rc" >&2
         tail -3 "$rc_err" | sed "s/^/  $1: /" >&2
     fi
-    echo "$1,$rc_cell,$rc_k,$rc,$frames,$seconds,$fps,$rss,$cpu,$(echo "$rc_st" | tr ' ' ,)" >>"$csv"
+    echo "$1,$rc_cell,$rc_k,$rc,$frames,$seconds,$fps,$rss,$cpu,$longest,$first,$(echo "$rc_st" | tr ' ' ,)" >>"$csv"
+}
+
+# pair DIR WHAT: the medians of native's and auto's WHAT (milliseconds) as "native / auto".
+pair() {
+    awk -v a="$(median "$1/native.$2" 2>/dev/null)" -v b="$(median "$1/auto.$2" 2>/dev/null)" \
+        'BEGIN { printf "%s / %s", (a == "" ? "-" : sprintf("%.1f", a)), (b == "" ? "-" : sprintf("%.1f", b)) }'
 }
 
 # ratio A B: A / B to two places, or "-".
@@ -128,7 +141,7 @@ if [ "$memory" = 1 ]; then
 else
     header="| program | native fps | spread" rule="|---|---:|---:"
     for m in $methods; do header="$header | $m" rule="$rule|---:"; done
-    case " $methods " in *" auto "*) header="$header | auto, CPU" rule="$rule|---:" ;; esac
+    case " $methods " in *" auto "*) header="$header | auto, CPU | longest frame ms | first frame ms" rule="$rule|---:|---:|---:" ;; esac
     header="$header | auto: quads mvc/split/subdiv/pass | class |" rule="$rule|---|---|"
 fi
 printf '%s\n%s\n' "$header" "$rule" >"$out/$base.md"
@@ -168,10 +181,11 @@ while read -r name args; do
     done
     if [ -f "$tmp/auto.cpf" ]; then
         r=$(ratio "$(median "$tmp/auto.cpf")" "$(median "$tmp/native.cpf" 2>/dev/null || true)")
-        row="$row | $r"
+        row="$row | $r | $(pair "$tmp" longest) | $(pair "$tmp" first)"
         echo "$name $r" >>"$apps_tmp/cpu"
+        echo "$name $(median "$tmp/native.longest") $(median "$tmp/auto.longest")" >>"$apps_tmp/longest"
     else
-        case " $methods " in *" auto "*) row="$row | -" ;; esac
+        case " $methods " in *" auto "*) row="$row | - | - | -" ;; esac
     fi
     st=$(cat "$tmp/auto.stats" 2>/dev/null || true)
     class=$(echo "$st" | awk '{ if (!NF) print "-"; else if ($2 + $4 == 0) print "split"; else if (2 * ($2 + $4) > $1) print "smooth"; else print "mixed" }')
@@ -204,6 +218,10 @@ summary() {
     awk '$2 != "-" { print $2 + 0 }' "$apps_tmp/cpu" >"$apps_tmp/m.cpu"
     printf -- "- auto, frames per CPU second of the process: median %s, lowest %s\n" "$(median "$apps_tmp/m.cpu")" \
         "$(sort -g "$apps_tmp/m.cpu" | head -1)"
+    awk '$2 > 0 && $3 != "" { printf "%.2f %s\n", $3 / $2, $1 }' "$apps_tmp/longest" | sort -g >"$apps_tmp/m.longest"
+    awk '{ print $1 }' "$apps_tmp/m.longest" >"$apps_tmp/m.lr"
+    printf -- "- auto, longest frame over native's longest: median %s, highest %s\n" "$(median "$apps_tmp/m.lr")" \
+        "$(tail -1 "$apps_tmp/m.longest" | awk '{ printf "%s (%s)", $1, $2 }')"
     echo
     echo "Targets (auto):"
     awk 'NR == FNR { class[$1] = $2; next } $2 == "auto" && $3 != "-" { print $1, $3 + 0, class[$1] }' \

@@ -8,9 +8,12 @@
  * the environment:
  *
  *   APPSHIM_SECONDS=S   run S seconds of real time from the end of the first swap, then
- *                       write "frames seconds rss_kib cpu_seconds" (swaps after the first,
- *                       the real time they took, VmRSS, the process's CPU time in them) to
- *                       APPSHIM_OUT (default stderr) and exit
+ *                       write "frames seconds rss_kib cpu_seconds longest_ms first_ms" (swaps
+ *                       after the first, the real time they took, VmRSS, the process's CPU
+ *                       time in them, the longest time between two of them: a stall a user
+ *                       sees, and the time from the shim's loading to the end of the first
+ *                       swap: start-up and first frame) to APPSHIM_OUT (default stderr) and
+ *                       exit
  *   APPSHIM_SHOT=FILE   at swap APPSHIM_FRAME (default 20) read the finished back buffer
  *                       (the drawable's size) and write it as a PPM, then exit
  *   APPSHIM_MASK=FILE   with APPSHIM_SHOT: also write, as a PPM, the footprint of every
@@ -503,10 +506,17 @@ static long rss_kib(void)
     return kib;
 }
 
+static double loaded; /* when the shim was loaded: the program's start, as near as a preload sees it */
+
+__attribute__((constructor)) static void shim_loaded(void)
+{
+    loaded = real_seconds(CLOCK_MONOTONIC);
+}
+
 /* After the real swap: the timed run's end. */
 static void after_swap(int n)
 {
-    static double start, cpu_start;
+    static double start, cpu_start, last, longest;
     double now;
     FILE *f;
     if (n_children)
@@ -517,14 +527,18 @@ static void after_swap(int n)
     if (n == 1) {
         start = now;
         cpu_start = real_seconds(CLOCK_PROCESS_CPUTIME_ID);
+        last = now;
         return;
     }
+    if (now - last > longest)
+        longest = now - last;
+    last = now;
     if (now - start < cfg.seconds)
         return;
     f = cfg.out ? fopen(cfg.out, "w") : stderr;
     if (f) {
-        fprintf(f, "%d %.4f %ld %.4f\n", n - 1, now - start, rss_kib(),
-                real_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu_start);
+        fprintf(f, "%d %.4f %ld %.4f %.2f %.2f\n", n - 1, now - start, rss_kib(),
+                real_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu_start, 1000 * longest, 1000 * (start - loaded));
         if (f != stderr)
             fclose(f);
     }
