@@ -130,6 +130,14 @@ static unsigned attribs_read(const qgl__state *st, unsigned mask)
     return m & mask;
 }
 
+/* Whether the pipeline clamps attribute a to [0, 1] at each vertex before interpolating it
+ * (the colours): values affine as given can then reach the split, or the smooth path,
+ * unaffine, as colours of 0, 1, 2 and 1 clamped to 0, 1, 1 and 1. */
+static int clamped(int a)
+{
+    return a == QGL__AT_COLOR || a == QGL__AT_COLOR2;
+}
+
 /* Whether every attribute that reaches the picture is the same at the four corners, as
  * captured (equal inputs give equal values after any texture matrix). */
 static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx[4])
@@ -142,6 +150,50 @@ static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx
                 return 0;
     }
     return 1;
+}
+
+/* On a parallelogram, whether those attributes are affine, by qgl_split_is_exact's rule at
+ * 1e-5 (corner 0 from the others, whose barycentrics there are 1, -1, 1): its values only,
+ * with no geometry. Texture coordinates are judged before their texture matrix (a linear
+ * map keeps affine coordinates affine). */
+static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[4])
+{
+    for (unsigned bits = read; bits; bits &= bits - 1) {
+        int a = __builtin_ctz(bits), k = qgl__attribs[a].floats, clamp = clamped(a);
+        const float *f0 = v->attr[a] + (size_t)k * idx[0], *f1 = v->attr[a] + (size_t)k * idx[1];
+        const float *f2 = v->attr[a] + (size_t)k * idx[2], *f3 = v->attr[a] + (size_t)k * idx[3];
+        for (int j = 0; j < k; j++) {
+            double c0 = f0[j], c1 = f1[j], c2 = f2[j], c3 = f3[j];
+            if (clamp)
+                c0 = qgl__clamp01(c0), c1 = qgl__clamp01(c1), c2 = qgl__clamp01(c2), c3 = qgl__clamp01(c3);
+            double r = c1 - c2 + c3 - c0;
+            if (r == 0) /* most: equal values, or a grid's steps */
+                continue;
+            double lo = qgl__min(qgl__min(c0, c1), qgl__min(c2, c3));
+            double hi = qgl__max(qgl__max(c0, c1), qgl__max(c2, c3)), mag = qgl__max(fabs(lo), fabs(hi));
+            if (!(fabs(r) <= 1e-5 * (hi - lo) + 64 * DBL_EPSILON * mag))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* The verdict is the later tests' too, so it only saves time where it passes: a colour map's
+ * cells, which seldom do, would pay for it on top of those tests. Where fewer than one in
+ * eight passed lately, only one parallelogram in 16 is tried, so that the rate follows the
+ * scene. */
+static int try_parallel(qgl_context *ctx)
+{
+    return 8 * ctx->par_passed >= ctx->par_tested || (ctx->par_skipped++ & 15) == 0;
+}
+
+static int parallel_attribs(qgl_context *ctx, const qgl__verts *v, unsigned read, const size_t idx[4])
+{
+    int ok = parallel_values(v, read, idx);
+    ctx->par_tested++, ctx->par_passed += (unsigned)ok;
+    if (ctx->par_tested >= 256) /* a recent rate, as for lit quads */
+        ctx->par_tested /= 2, ctx->par_passed /= 2;
+    return ok;
 }
 
 /* Those attributes per corner, texture coordinates after their unit's texture matrix. */
@@ -157,7 +209,7 @@ static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_
             const float *src = v->attr[b] + (size_t)f * idx[c];
             if (u < 0) {
                 for (int j = 0; j < f; j++)
-                    a[k++] = src[j];
+                    a[k++] = clamped(b) ? qgl__clamp01(src[j]) : src[j];
                 continue;
             }
             double t[4];
@@ -184,8 +236,11 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     *planar = qgl__planar(p);
     if (!*planar || st->nonaffine)
         return 0;
-    if (attribs_constant(v, attribs_read(st, v->mask), idx))
-        return 1; /* nothing varies over the quad (a flat-coloured face): the commonest case */
+    /* nothing varies over the quad (a flat-coloured face: the commonest case), or on a
+     * parallelogram (a glyph, a grid cell) every value is affine: the later tests' verdict */
+    unsigned read = attribs_read(st, v->mask);
+    if (*planar == 2 ? try_parallel(ctx) && parallel_attribs(ctx, v, read, idx) : attribs_constant(v, read, idx))
+        return 1;
     if (invisible && split_invisible(ctx, st, v, idx, clip, px, p))
         return 1;
     int n = gather_attribs(st, v, idx, attr);
@@ -255,7 +310,7 @@ int qgl__planar(const double p[4][3])
     n[2] = d02[0] * d13[1] - d02[1] * d13[0];
     double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     if (qgl__parallelogram(d02, d13, d01) && n2 > 0 && n2 < INFINITY)
-        return 1; /* the test below passes it as well, at several times the cost */
+        return 2; /* the test below passes it as well, at several times the cost */
     for (int k = 0; k < 3; k++)
         for (int c = 0; c < 4; c++) {
             double a = fabs(p[c][k]), e = fabs(p[c][k] - p[0][k]);
@@ -301,15 +356,18 @@ int qgl__external_planar(const qgl__verts *v, const size_t idx[4])
     return height <= 1e-5 * extent;
 }
 
-/* One attribute (n floats per vertex at a) affine over the quad, or absent (a NULL). */
-static int class_affine(const double p[4][3], const float *a, int n, const size_t idx[4])
+/* Attribute a affine over the quad (as the pipeline clamps it), or absent. */
+static int class_affine(const double p[4][3], const qgl__verts *v, int a, const size_t idx[4])
 {
     double attr[4 * 4];
-    if (!a)
+    int n = qgl__attribs[a].floats;
+    if (!(v->mask & (1u << a)))
         return 1;
     for (int c = 0; c < 4; c++)
-        for (int k = 0; k < n; k++)
-            attr[c * n + k] = a[(size_t)n * idx[c] + (size_t)k];
+        for (int k = 0; k < n; k++) {
+            double x = v->attr[a][(size_t)n * idx[c] + (size_t)k];
+            attr[c * n + k] = clamped(a) ? qgl__clamp01(x) : x;
+        }
     return qgl_split_is_exact(p, attr, n, 1e-5);
 }
 
@@ -322,13 +380,12 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q)
     if (!object_corners(v, idx, p) || !qgl__planar(p))
         return 0;
     uint16_t f = QGL__F_PLANAR;
-    unsigned m = v->mask;
     f |= quad_grouped(v, idx, p, 1) ? QGL__F_GROUPED : 0;
-    f |= class_affine(p, (m & QGL__A_COLOR) ? v->col : NULL, 4, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
-    f |= class_affine(p, (m & QGL__A_COLOR2) ? v->col2 : NULL, 3, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
-    f |= class_affine(p, (m & QGL__A_FOG) ? v->fog : NULL, 1, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
+    f |= class_affine(p, v, QGL__AT_COLOR, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
+    f |= class_affine(p, v, QGL__AT_COLOR2, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
+    f |= class_affine(p, v, QGL__AT_FOG, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
     for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (class_affine(p, (m & (QGL__A_TEX0 << u)) ? v->tex[u] : NULL, 4, idx))
+        if (class_affine(p, v, QGL__AT_TEX0 + u, idx))
             f |= (uint16_t)(QGL__F_AFFINE << (QGL__FC_TEX0 + u));
     return f;
 }

@@ -601,6 +601,7 @@ struct qgl_context {
     qgl__state state;         /* the state of the last draw (state.c) */
     qgl__lightvals lightvals; /* light.c's copy of the light values, for the planner */
     unsigned lit_tested, lit_passed, lit_skipped; /* lit quads judged lately (split_invisible) */
+    unsigned par_tested, par_passed, par_skipped; /* parallelograms' values tested lately (draw.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
@@ -663,7 +664,8 @@ int qgl__draw_with_facts(qgl_context *ctx, const qgl__verts *v, qgl_topology top
 uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q);
 /* Planarity of object-space corners given as floats: within 1e-6 of the quad's extent, or
  * within what rounding the corners to float can do (a small quad far from the origin, as a
- * fine sphere's, is planar only to its coordinates' precision). */
+ * fine sphere's, is planar only to its coordinates' precision). 2 for a parallelogram with
+ * an area (planar too), 1 for another planar quad, 0 otherwise. */
 int qgl__planar(const double p[4][3]);
 /* x clamped to [0, 1] as the pipeline clamps colours (NaN passes through). */
 static inline double qgl__clamp01(double x)

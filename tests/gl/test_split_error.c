@@ -24,7 +24,8 @@
  * itself from GL's lighting equations and the state read back: a quad whose twist is well
  * inside the bound splits, one far outside does not (a spot direction left unnormalized or a
  * wrong spot exponent in the planner's lighting fails this; the pictures alone did not).
- * Corners given with their own w (glVertex4f) are held to the same picture.
+ * Corners given with their own w (glVertex4f) are held to the same picture, and so are
+ * colours affine as given but not once the pipeline clamps them to [0, 1].
  * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
  * the planner judges every lit quad rather than leave some untested where this machine's
  * calibration says judging would not pay. */
@@ -60,6 +61,16 @@ static void grid(double k_col, double k_tex)
 
 /* Normals of a bump over the grid, n ~ (-k x, -k y, 1); k < 0: a vertex checker of normals
  * tilted by 0.8 the one way or the other. */
+/* Red 4 (x + y): affine as given, but clamped to [0, 1] at each corner, as the pipeline does,
+ * it is not on the quads that straddle red = 0 or red = 1 (0.25 off there: far from
+ * invisible), where the split shows a crease the smooth path does not. */
+static void clamped_grid(void)
+{
+    grid(0, 0);
+    for (int i = 0; i < NV; i++)
+        col[i][0] = 4 * (pos[i][0] + pos[i][1]);
+}
+
 static void normals(double k)
 {
     for (int i = 0; i < NV; i++) {
@@ -433,6 +444,12 @@ int main(void)
     split = compare(&t, "colour, visible", 0, 255, 0, 0);
     th_check(split == 0, "colour checker: %d quads split", split);
     teeth(&t, "colour, budget x1000", W * H / 20, 16);
+    clamped_grid();
+    for (int retained = 0; retained < 2; retained++) {
+        split = compare(&t, retained ? "colour, clamped, retained" : "colour, clamped", 0, 1, 0, retained);
+        th_check(split < N * N - 8, "colours clamped: %d of %d quads split, those across the clamp too", split,
+                 N * N);
+    }
 
     grid(0, 0);
     for (int two = 0; two < 2; two++) {
