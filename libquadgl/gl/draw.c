@@ -196,10 +196,12 @@ static int parallel_attribs(qgl_context *ctx, const qgl__verts *v, unsigned read
     return ok;
 }
 
-/* Those attributes per corner, texture coordinates after their unit's texture matrix. */
-static int gather_attribs(const qgl__state *st, const qgl__verts *v, const size_t idx[4], double *attr)
+/* The batch's attributes that reach the picture (ctx->plan_read) per corner, texture
+ * coordinates after their unit's texture matrix. */
+static int gather_attribs(const qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4],
+                          double *attr)
 {
-    unsigned read = attribs_read(st, v->mask);
+    unsigned read = ctx->plan_read;
     int n = 0;
     for (int c = 0; c < 4; c++) {
         double *a = attr + c * QGL__ATTR_MAX;
@@ -238,12 +240,12 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
         return 0;
     /* nothing varies over the quad (a flat-coloured face: the commonest case), or on a
      * parallelogram (a glyph, a grid cell) every value is affine: the later tests' verdict */
-    unsigned read = attribs_read(st, v->mask);
+    unsigned read = ctx->plan_read;
     if (*planar == 2 ? try_parallel(ctx) && parallel_attribs(ctx, v, read, idx) : attribs_constant(v, read, idx))
         return 1;
     if (invisible && split_invisible(ctx, st, v, idx, clip, px, p))
         return 1;
-    int n = gather_attribs(st, v, idx, attr);
+    int n = gather_attribs(ctx, st, v, idx, attr);
     for (int c = 0; c < 4; c++)
         for (int k = 0; k < n; k++)
             packed[c * n + k] = attr[c * QGL__ATTR_MAX + k];
@@ -430,7 +432,7 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
         return *planar = 0;
     if (facts) {
         *planar = facts->quad[q] & QGL__F_PLANAR;
-        return one_material && (exact_by_facts(st, needed_facts(st), facts->quad[q]) ||
+        return one_material && (exact_by_facts(st, ctx->plan_need, facts->quad[q]) ||
                                 (invisible && *planar && split_invisible(ctx, st, v, idx, clip, px, p)));
     }
     if (!one_material) {
@@ -1350,6 +1352,8 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     if (!ensure((void **)&ctx->clip, &ctx->clip_cap, 4 * v->n, sizeof(double)))
         return 0;
     transform_all(st->mvp, v->pos, v->n, ctx->clip);
+    ctx->plan_read = attribs_read(st, v->mask); /* the state's, the same for every quad */
+    ctx->plan_need = needed_facts(st);
     plan_runs(ctx, st, v, topo, nq, facts);
     merge_runs(ctx->path, nq);
     if (ctx->shader_level != 120)

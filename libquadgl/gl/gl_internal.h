@@ -574,6 +574,7 @@ struct qgl_context {
     uint16_t *unrolled_facts;
     size_t unrolled_facts_cap;
     double *clip;             /* 4 per vertex */
+    unsigned plan_read, plan_need; /* the batch's attributes that reach the picture, facts it needs */
     unsigned char *path;      /* per quad */
     size_t idx_offset;        /* the batch's strip indices in the stream buffer */
     size_t clip_cap, path_cap;
