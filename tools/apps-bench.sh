@@ -183,7 +183,7 @@ while read -r name args; do
         r=$(ratio "$(median "$tmp/auto.cpf")" "$(median "$tmp/native.cpf" 2>/dev/null || true)")
         row="$row | $r | $(pair "$tmp" longest) | $(pair "$tmp" first)"
         echo "$name $r" >>"$apps_tmp/cpu"
-        echo "$name $(median "$tmp/native.longest") $(median "$tmp/auto.longest")" >>"$apps_tmp/longest"
+        echo "$name $(median "$tmp/native.longest" 2>/dev/null) $(median "$tmp/auto.longest" 2>/dev/null)" >>"$apps_tmp/longest"
     else
         case " $methods " in *" auto "*) row="$row | - | - | -" ;; esac
     fi

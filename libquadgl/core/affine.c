@@ -166,10 +166,7 @@ static int attr_affine(const double *attr, int nattr, int i, const double b[3], 
     for (int k = 0; k < nattr; k++) {
         double a0 = attr[i * nattr + k], a1 = attr[i1 * nattr + k], a2 = attr[i2 * nattr + k],
                a3 = attr[i3 * nattr + k];
-        double lo = qgl__min(qgl__min(a0, a1), qgl__min(a2, a3)), hi = qgl__max(qgl__max(a0, a1), qgl__max(a2, a3));
-        double mag = qgl__max(fabs(lo), fabs(hi));
-        double pred = b[0] * a1 + b[1] * a2 + b[2] * a3;
-        if (!(fabs(pred - a0) <= rel_tol * (hi - lo) + 16 * DBL_EPSILON * (1 + bsum) * mag))
+        if (!qgl__value_affine(a0, a1, a2, a3, b[0] * a1 + b[1] * a2 + b[2] * a3, bsum, rel_tol))
             return 0;
     }
     return 1;

@@ -40,6 +40,18 @@ static inline double qgl__min(double a, double b)
     return a < b ? a : b;
 }
 
+/* Whether one corner's value a0 agrees with its prediction pred from the other three (a1,
+ * a2, a3, by barycentrics whose magnitudes sum to bsum): within rel_tol of the four values'
+ * range, plus the rounding of the prediction. The affinity tests' one rule: the core's
+ * qgl_split_is_exact and the GL planner's parallelogram shortcut. */
+static inline int qgl__value_affine(double a0, double a1, double a2, double a3, double pred, double bsum,
+                                    double rel_tol)
+{
+    double lo = qgl__min(qgl__min(a0, a1), qgl__min(a2, a3)), hi = qgl__max(qgl__max(a0, a1), qgl__max(a2, a3));
+    double mag = qgl__max(fabs(lo), fabs(hi));
+    return fabs(pred - a0) <= rel_tol * (hi - lo) + 16 * DBL_EPSILON * (1 + bsum) * mag;
+}
+
 static inline int qgl__all_finite(const double *a, int n)
 {
     for (int i = 0; i < n; i++)

@@ -166,12 +166,10 @@ static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[
             double c0 = f0[j], c1 = f1[j], c2 = f2[j], c3 = f3[j];
             if (clamp)
                 c0 = qgl__clamp01(c0), c1 = qgl__clamp01(c1), c2 = qgl__clamp01(c2), c3 = qgl__clamp01(c3);
-            double r = c1 - c2 + c3 - c0;
-            if (r == 0) /* most: equal values, or a grid's steps */
+            double pred = c1 - c2 + c3;
+            if (pred - c0 == 0) /* most: equal values, or a grid's steps (infinities: NaN, not 0) */
                 continue;
-            double lo = qgl__min(qgl__min(c0, c1), qgl__min(c2, c3));
-            double hi = qgl__max(qgl__max(c0, c1), qgl__max(c2, c3)), mag = qgl__max(fabs(lo), fabs(hi));
-            if (!(fabs(r) <= 1e-5 * (hi - lo) + 64 * DBL_EPSILON * mag))
+            if (!qgl__value_affine(c0, c1, c2, c3, pred, 3, 1e-5))
                 return 0;
         }
     }

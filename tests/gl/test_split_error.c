@@ -59,8 +59,6 @@ static void grid(double k_col, double k_tex)
             }
 }
 
-/* Normals of a bump over the grid, n ~ (-k x, -k y, 1); k < 0: a vertex checker of normals
- * tilted by 0.8 the one way or the other. */
 /* Red 4 (x + y): affine as given, but clamped to [0, 1] at each corner, as the pipeline does,
  * it is not on the quads that straddle red = 0 or red = 1 (0.25 off there: far from
  * invisible), where the split shows a crease the smooth path does not. */
@@ -71,6 +69,8 @@ static void clamped_grid(void)
         col[i][0] = 4 * (pos[i][0] + pos[i][1]);
 }
 
+/* Normals of a bump over the grid, n ~ (-k x, -k y, 1); k < 0: a vertex checker of normals
+ * tilted by 0.8 the one way or the other. */
 static void normals(double k)
 {
     for (int i = 0; i < NV; i++) {
