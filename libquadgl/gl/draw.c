@@ -162,6 +162,9 @@ static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[
         int a = __builtin_ctz(bits), k = qgl__attribs[a].floats, clamp = clamped(a);
         const float *f0 = v->attr[a] + (size_t)k * idx[0], *f1 = v->attr[a] + (size_t)k * idx[1];
         const float *f2 = v->attr[a] + (size_t)k * idx[2], *f3 = v->attr[a] + (size_t)k * idx[3];
+        size_t bytes = (size_t)k * sizeof(float);
+        if (memcmp(f0, f1, bytes) == 0 && memcmp(f0, f2, bytes) == 0 && memcmp(f0, f3, bytes) == 0)
+            continue; /* one value (a glyph's colour), constant as attribs_constant judges it */
         for (int j = 0; j < k; j++) {
             double c0 = f0[j], c1 = f1[j], c2 = f2[j], c3 = f3[j];
             if (clamp)
@@ -794,14 +797,12 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     size_t idx[4];
     const double *clip[4];
     double px[4][2];
-    int external = 0, behind = 0, outside = 0;
+    int external = 0, behind = 0;
     for (int c = 0; c < 4; c++) {
         idx[c] = qgl__corner(topo, q, c);
         clip[c] = ctx->clip + 4 * idx[c];
-        const double *x = clip[c];
-        external |= !(x[3] > 0);
-        behind += !(x[3] > 0);
-        outside |= near_or_out(x[0], x[3]) || near_or_out(x[1], x[3]) || near_or_out(x[2], x[3]);
+        external |= !(clip[c][3] > 0);
+        behind += !(clip[c][3] > 0);
     }
     if (behind == 4)
         return QGL__P_SPLIT; /* entirely behind the eye: the clipper removes it */
@@ -837,7 +838,12 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         unsigned char screen = qgl__external_planar(v, idx) ? 0 : QGL__P_SCREEN;
         return QGL__P_MVC | QGL__P_EXTERNAL | QGL__P_CLIPPED | screen;
     }
-    /* the driver clips quads reaching out of the view volume: see shader.c's persp() */
+    /* the driver clips quads reaching out of the view volume: see shader.c's persp(); asked
+     * only here, since most quads are split before */
+    int outside = 0;
+    for (int c = 0; c < 4; c++)
+        outside |= near_or_out(clip[c][0], clip[c][3]) || near_or_out(clip[c][1], clip[c][3]) ||
+                   near_or_out(clip[c][2], clip[c][3]);
     return QGL__P_MVC | (planar ? 0 : QGL__P_DEPTH) | (outside ? QGL__P_CLIPPED : 0);
 }
 
