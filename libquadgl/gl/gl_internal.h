@@ -469,6 +469,10 @@ typedef struct qgl__state {
  * needs them after a change, and the normal matrix. */
 typedef struct qgl__lightval {
     GLfloat amb[4], dif[4], spe[4], pos[4], dir[4], exponent, cos_cutoff, att[3];
+    /* per vertex the same, so worked out when read: the position over its w (positional), the
+     * unit direction to the light and its half vector for an infinite viewer (directional),
+     * the unit spot direction */
+    double at[3], to[3], half[3], spot[3];
 } qgl__lightval;
 typedef struct qgl__lightvals {
     int lights_valid, materials_valid, normal_valid, normal_ok, current_valid;

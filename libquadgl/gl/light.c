@@ -69,6 +69,18 @@ int qgl__material_set(qgl_context *ctx, GLenum face, GLenum pname, const float v
     return 1;
 }
 
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalize3(double a[3])
+{
+    double l = sqrt(dot3(a, a));
+    if (l > 0)
+        a[0] /= l, a[1] /= l, a[2] /= l;
+}
+
 static void fetch_lights(qgl_context *ctx, const qgl__key *k)
 {
     struct qgl__gl *gl = &ctx->gl;
@@ -90,6 +102,16 @@ static void fetch_lights(qgl_context *ctx, const qgl__key *k)
         gl->GetLightfv(l, GL_LINEAR_ATTENUATION, &L->att[1]);
         gl->GetLightfv(l, GL_QUADRATIC_ATTENUATION, &L->att[2]);
         L->cos_cutoff = (float)cos(cutoff * (M_PI / 180));
+        for (int c = 0; c < 3; c++) {
+            L->at[c] = L->pos[3] != 0 ? L->pos[c] / L->pos[3] : 0; /* in float, as the shader divides */
+            L->to[c] = L->pos[c];
+            L->spot[c] = L->dir[c];
+        }
+        normalize3(L->to);
+        normalize3(L->spot);
+        double h[3] = {L->to[0], L->to[1], L->to[2] + 1};
+        normalize3(h);
+        memcpy(L->half, h, sizeof h);
     }
     gl->GetFloatv(GL_LIGHT_MODEL_AMBIENT, lv->model_ambient);
 }
@@ -122,18 +144,6 @@ static int normal_matrix(const double mv[16], double nm[3][3], double *rescale)
     return 1;
 }
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void normalize3(double a[3])
-{
-    double l = sqrt(dot3(a, a));
-    if (l > 0)
-        a[0] /= l, a[1] /= l, a[2] /= l;
-}
-
 /* One face's colours at one vertex (n already facing it): primary RGBA, then the secondary
  * RGB (zero unless the specular term is separate), clamped as the vertex shader clamps. */
 static void light_vertex(const qgl__key *k, const qgl__lightvals *lv, const float mat[4][4], float shininess,
@@ -144,35 +154,33 @@ static void light_vertex(const qgl__key *k, const qgl__lightvals *lv, const floa
         V[0] = -eye[0], V[1] = -eye[1], V[2] = -eye[2];
         normalize3(V);
     }
-    for (int i = 0; i < 8; i++) {
-        if (!((k->lights >> i) & 1))
-            continue;
+    int local = (k->flags & QGL__KF_LOCAL_VIEWER) != 0;
+    for (unsigned bits = k->lights; bits; bits &= bits - 1) {
+        int i = __builtin_ctz(bits), positional = (k->light_pos >> i) & 1;
         const qgl__lightval *L = &lv->light[i];
         double VP[3], att = 1;
-        if ((k->light_pos >> i) & 1) {
+        if (positional) {
             for (int c = 0; c < 3; c++)
-                VP[c] = L->pos[c] / L->pos[3] - eye[c];
+                VP[c] = L->at[c] - eye[c];
             double d = sqrt(dot3(VP, VP));
             if (d > 0)
                 VP[0] /= d, VP[1] /= d, VP[2] /= d;
             att = 1 / (L->att[0] + d * (L->att[1] + d * L->att[2]));
-        } else {
-            for (int c = 0; c < 3; c++)
-                VP[c] = L->pos[c];
-            normalize3(VP);
-        }
+        } else
+            memcpy(VP, L->to, sizeof VP);
         if ((k->light_spot >> i) & 1) {
-            double dir[3] = {L->dir[0], L->dir[1], L->dir[2]};
-            normalize3(dir);
-            double sd = -dot3(VP, dir);
+            double sd = -dot3(VP, L->spot);
             att *= sd >= L->cos_cutoff ? pow(fmax(sd, 0), L->exponent) : 0;
         }
         double nv = dot3(n, VP);
         for (int c = 0; c < 3; c++)
             amb[c] += att * L->amb[c];
         if (nv > 0) {
-            double h[3] = {VP[0] + V[0], VP[1] + V[1], VP[2] + V[2]};
-            normalize3(h);
+            double h[3] = {L->half[0], L->half[1], L->half[2]};
+            if (positional || local) {
+                h[0] = VP[0] + V[0], h[1] = VP[1] + V[1], h[2] = VP[2] + V[2];
+                normalize3(h);
+            }
             double nh = fmax(dot3(n, h), 0);
             double s = att * (nh > 0 ? pow(nh, shininess) : (shininess == 0 ? 1 : 0));
             for (int c = 0; c < 3; c++) {
