@@ -27,7 +27,10 @@
 # the median over the runs, natively and under auto: a stall or a slow start is what a user
 # notices that a frame rate hides. --mvc adds the
 # mvc column; --quick is --seconds 2 --reps 1. Targets printed against `auto`: every "split"
-# program >= 0.97x, the median >= 0.98x, none below 0.9x, "smooth" programs >= 0.9x.
+# program >= 0.97x, the median >= 0.98x, none below 0.9x, "smooth" programs >= 0.9x; each
+# program below 0.9x gets a line on why, from the run's own figures: the share of its quads that
+# took a smooth path, its `split` and `off` ratios (quadgl's cost without smooth quads, and of
+# passing calls through) and the native spread.
 #
 # --memory: the resident size instead (VmRSS at the end of a 30-second run, native and
 # auto, one run each unless told; the time of day and pid frozen as for frame rates, so that
@@ -80,6 +83,7 @@ echo "program,method,run,exit,frames,seconds,fps,rss_kib,cpu_s,longest_ms,first_
 : >"$apps_tmp/cpu"
 : >"$apps_tmp/longest"
 : >"$apps_tmp/statlines"
+: >"$apps_tmp/why"
 start=$(date +%s)
 
 # rotated K: the cells in order rotated by K.
@@ -190,6 +194,8 @@ while read -r name args; do
     st=$(cat "$tmp/auto.stats" 2>/dev/null || true)
     class=$(echo "$st" | awk '{ if (!NF) print "-"; else if ($2 + $4 == 0) print "split"; else if (2 * ($2 + $4) > $1) print "smooth"; else print "mixed" }')
     echo "$name $class" >>"$apps_tmp/classes"
+    echo "$name $spread $(echo "$st" | awk '{ if (NF && $1 > 0) printf "%.0f", 100 * ($2 + $4) / $1; else printf "-" }')" \
+        >>"$apps_tmp/why"
     [ -f "$tmp/auto.statline" ] && echo "$name: $(cat "$tmp/auto.statline")" >>"$apps_tmp/statlines"
     echo "$row | $(echo "$st" | awk '{ if (NF) printf "%s: %s/%s/%s/%s", $1, $2, $3, $4, $5 }') | $class |" >>"$out/$base.md"
     echo "apps-bench: $name done" >&2
@@ -234,6 +240,31 @@ summary() {
          END { printf "- no program below 0.9x: %s\n", (bad == "" ? "met" : "below:" bad) }' "$apps_tmp/auto"
     awk '$3 == "smooth" { n++; if ($2 < 0.9) bad = bad " " $1 " (" $2 ")" }
          END { printf "- programs dominated by smooth quads >= 0.9x: %d programs, %s\n", n, (bad == "" ? "met" : "below:" bad) }' "$apps_tmp/auto"
+    echo
+    echo "Below 0.9x under auto, and what this run's own figures say of why:"
+    echo
+    why
+}
+
+# why: a line for each program below 0.9x under auto: the share of its quads that took a smooth
+# path, its ratios with every quad split and with every call passed through (where measured),
+# and the native spread to read them against.
+why() {
+    awk -v whyf="$apps_tmp/why" -v ratiof="$apps_tmp/ratios" '
+        FILENAME == whyf { spread[$1] = $2; share[$1] = $3; next }
+        FILENAME == ratiof { r[$1, $2] = $3; next }
+        $2 < 0.9 {
+            n++
+            split_r = (($1, "split") in r) ? r[$1, "split"] : "-"
+            off_r = (($1, "off") in r) ? r[$1, "off"] : "-"
+            if ($3 == "-")
+                printf "- %s %s: no statistics line from quadgl under auto\n", $1, $2
+            else if ($3 == "split")
+                printf "- %s %s (split): every quad split, so this is quadgl'"'"'s own cost (capture, planning, upload); off %s (calls passed through); native spread %s\n", $1, $2, off_r, spread[$1]
+            else
+                printf "- %s %s (%s): %s%% of its quads took a smooth path, whose per-fragment weights are CPU time on a software rasterizer; split %s (the same frames with every quad split: what quadgl costs without them); native spread %s\n", $1, $2, $3, share[$1], split_r, spread[$1]
+        }
+        END { if (!n) print "- none" }' "$apps_tmp/why" "$apps_tmp/ratios" "$apps_tmp/auto"
 }
 {
     echo
