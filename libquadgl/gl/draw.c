@@ -253,22 +253,29 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     return qgl_split_is_exact(p, packed, n, 1e-5);
 }
 
-/* Corner c's captured attributes, concatenated (positions excluded), its material too where
- * asked; returns the count. */
-static int corner_inputs(const qgl__verts *v, size_t i, int materials, float *out)
+/* Whether n floats are the same to the bit (memcmp's verdict, without a call for a few). */
+static inline int same_bits(const float *a, const float *b, int n)
 {
-    int k = 0;
-    for (int a = 0; a < QGL__NATTR; a++)
-        if (v->mask & (1u << a)) {
-            int n = qgl__attribs[a].floats;
-            memcpy(out + k, v->attr[a] + (size_t)n * i, (size_t)n * sizeof(float));
-            k += n;
-        }
-    if ((v->mask & QGL__A_MATERIAL) && materials) {
-        memcpy(out + k, v->mat + QGL__MATERIAL_FLOATS * i, QGL__MATERIAL_FLOATS * sizeof(float));
-        k += QGL__MATERIAL_FLOATS;
+    for (int k = 0; k < n; k++) {
+        uint32_t x, y;
+        memcpy(&x, a + k, sizeof x), memcpy(&y, b + k, sizeof y);
+        if (x != y)
+            return 0;
     }
-    return k;
+    return 1;
+}
+
+/* Whether corners i and j carry the same captured attributes (positions aside), and the same
+ * material where asked: compared in place, the first difference ending it. */
+static int same_inputs(const qgl__verts *v, size_t i, size_t j, int materials)
+{
+    for (unsigned bits = v->mask & ((1u << QGL__NATTR) - 1); bits; bits &= bits - 1) {
+        int a = __builtin_ctz(bits), n = qgl__attribs[a].floats;
+        if (!same_bits(v->attr[a] + (size_t)n * i, v->attr[a] + (size_t)n * j, n))
+            return 0;
+    }
+    return !(materials && (v->mask & QGL__A_MATERIAL)) ||
+           same_bits(v->mat + QGL__MATERIAL_FLOATS * i, v->mat + QGL__MATERIAL_FLOATS * j, QGL__MATERIAL_FLOATS);
 }
 
 /* QGL__F_GROUPED: corners with equal attributes are grouped; a per-vertex function of the
@@ -277,15 +284,11 @@ static int corner_inputs(const qgl__verts *v, size_t i, int materials, float *ou
  * cylinder's quad are the common case: smooth lighting is then exactly the split. */
 static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p[4][3], int materials)
 {
-    enum { MAXIN = 4 + 3 + 3 + 1 + QGL__MATERIAL_FLOATS + 4 * QGL_MAX_TEXUNITS };
-    float in[4][MAXIN];
-    int n = 0, group[4], ngroups = 0;
-    for (int c = 0; c < 4; c++)
-        n = corner_inputs(v, idx[c], materials, in[c]);
+    int group[4], ngroups = 0;
     for (int c = 0; c < 4; c++) {
         group[c] = ngroups;
         for (int d = 0; d < c; d++)
-            if (memcmp(in[c], in[d], (size_t)n * sizeof(float)) == 0) {
+            if (same_inputs(v, idx[c], idx[d], materials)) {
                 group[c] = group[d];
                 break;
             }
