@@ -194,7 +194,7 @@ while read -r name args; do
     st=$(cat "$tmp/auto.stats" 2>/dev/null || true)
     class=$(echo "$st" | awk '{ if (!NF) print "-"; else if ($2 + $4 == 0) print "split"; else if (2 * ($2 + $4) > $1) print "smooth"; else print "mixed" }')
     echo "$name $class" >>"$apps_tmp/classes"
-    echo "$name $spread $(echo "$st" | awk '{ if (NF && $1 > 0) printf "%.0f", 100 * ($2 + $4) / $1; else printf "-" }')" \
+    echo "$name $spread $(echo "$st" | awk '{ if (NF && $1 > 0) { p = 100 * ($2 + $4) / $1; printf (p < 1 ? "%.2g" : "%.0f"), p } else printf "-" }')" \
         >>"$apps_tmp/why"
     [ -f "$tmp/auto.statline" ] && echo "$name: $(cat "$tmp/auto.statline")" >>"$apps_tmp/statlines"
     echo "$row | $(echo "$st" | awk '{ if (NF) printf "%s: %s/%s/%s/%s", $1, $2, $3, $4, $5 }') | $class |" >>"$out/$base.md"
@@ -246,23 +246,27 @@ summary() {
     why
 }
 
-# why: a line for each program below 0.9x under auto: the share of its quads that took a smooth
-# path, its ratios with every quad split and with every call passed through (where measured),
-# and the native spread to read them against.
+# why: a line for each program below 0.9x under auto. Its ratio with every quad split (where
+# measured) parts the gap into quadgl's own cost (1 - split) and the smooth quads' (split -
+# auto); the share of quads on a smooth path, the ratio with every call passed through and the
+# native spread go with it.
 why() {
     awk -v whyf="$apps_tmp/why" -v ratiof="$apps_tmp/ratios" '
         FILENAME == whyf { spread[$1] = $2; share[$1] = $3; next }
         FILENAME == ratiof { r[$1, $2] = $3; next }
         $2 < 0.9 {
             n++
-            split_r = (($1, "split") in r) ? r[$1, "split"] : "-"
-            off_r = (($1, "off") in r) ? r[$1, "off"] : "-"
+            s = (($1, "split") in r) ? r[$1, "split"] : "-"
+            o = (($1, "off") in r) ? r[$1, "off"] : "-"
+            tail = sprintf("off %s (every call passed through); native spread %s", o, spread[$1])
             if ($3 == "-")
                 printf "- %s %s: no statistics line from quadgl under auto\n", $1, $2
             else if ($3 == "split")
-                printf "- %s %s (split): every quad split, so this is quadgl'"'"'s own cost (capture, planning, upload); off %s (calls passed through); native spread %s\n", $1, $2, off_r, spread[$1]
+                printf "- %s %s (every quad split): quadgl'"'"'s own cost (capture, planning, upload); %s\n", $1, $2, tail
+            else if (s == "-")
+                printf "- %s %s (%s%% of quads smooth): no split run to tell the smooth quads'"'"' cost from quadgl'"'"'s own; %s\n", $1, $2, share[$1], tail
             else
-                printf "- %s %s (%s): %s%% of its quads took a smooth path, whose per-fragment weights are CPU time on a software rasterizer; split %s (the same frames with every quad split: what quadgl costs without them); native spread %s\n", $1, $2, $3, share[$1], split_r, spread[$1]
+                printf "- %s %s (%s%% of quads smooth): with every quad split it runs at %s, so of the gap %.2f is quadgl'"'"'s own cost and %.2f the smooth quads'"'"' (per-fragment weights: CPU time on a software rasterizer); %s\n", $1, $2, share[$1], s, (s < 1 ? 1 - s : 0), (s > $2 ? s - $2 : 0), tail
         }
         END { if (!n) print "- none" }' "$apps_tmp/why" "$apps_tmp/ratios" "$apps_tmp/auto"
 }
