@@ -138,6 +138,18 @@ static int clamped(int a)
     return a == QGL__AT_COLOR || a == QGL__AT_COLOR2;
 }
 
+/* Whether n floats are the same to the bit (memcmp's verdict, without a call for a few). */
+static inline int same_bits(const float *a, const float *b, int n)
+{
+    for (int k = 0; k < n; k++) {
+        uint32_t x, y;
+        memcpy(&x, a + k, sizeof x), memcpy(&y, b + k, sizeof y);
+        if (x != y)
+            return 0;
+    }
+    return 1;
+}
+
 /* Whether every attribute that reaches the picture is the same at the four corners, as
  * captured (equal inputs give equal values after any texture matrix). */
 static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx[4])
@@ -146,7 +158,7 @@ static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx
         int a = __builtin_ctz(bits), k = qgl__attribs[a].floats;
         const float *f = v->attr[a];
         for (int c = 1; c < 4; c++)
-            if (memcmp(f + (size_t)k * idx[0], f + (size_t)k * idx[c], (size_t)k * sizeof(float)) != 0)
+            if (!same_bits(f + (size_t)k * idx[0], f + (size_t)k * idx[c], k))
                 return 0;
     }
     return 1;
@@ -162,8 +174,7 @@ static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[
         int a = __builtin_ctz(bits), k = qgl__attribs[a].floats, clamp = clamped(a);
         const float *f0 = v->attr[a] + (size_t)k * idx[0], *f1 = v->attr[a] + (size_t)k * idx[1];
         const float *f2 = v->attr[a] + (size_t)k * idx[2], *f3 = v->attr[a] + (size_t)k * idx[3];
-        size_t bytes = (size_t)k * sizeof(float);
-        if (memcmp(f0, f1, bytes) == 0 && memcmp(f0, f2, bytes) == 0 && memcmp(f0, f3, bytes) == 0)
+        if (same_bits(f0, f1, k) && same_bits(f0, f2, k) && same_bits(f0, f3, k))
             continue; /* one value (a glyph's colour), constant as attribs_constant judges it */
         for (int j = 0; j < k; j++) {
             double c0 = f0[j], c1 = f1[j], c2 = f2[j], c3 = f3[j];
@@ -185,15 +196,22 @@ static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[
  * scene. */
 static int try_parallel(qgl_context *ctx)
 {
-    return 8 * ctx->par_passed >= ctx->par_tested || (ctx->par_skipped++ & 15) == 0;
+    qgl__rate *r = &ctx->par_rate;
+    return 8 * r->passed >= r->tested || (r->skipped++ & 15) == 0;
+}
+
+/* One more result of a test into its recent rate, halved past window tests. */
+static void rate_note(qgl__rate *r, int passed, unsigned window)
+{
+    r->tested++, r->passed += (unsigned)passed;
+    if (r->tested >= window)
+        r->tested /= 2, r->passed /= 2;
 }
 
 static int parallel_attribs(qgl_context *ctx, const qgl__verts *v, unsigned read, const size_t idx[4])
 {
     int ok = parallel_values(v, read, idx);
-    ctx->par_tested++, ctx->par_passed += (unsigned)ok;
-    if (ctx->par_tested >= 256) /* a recent rate, as for lit quads */
-        ctx->par_tested /= 2, ctx->par_passed /= 2;
+    rate_note(&ctx->par_rate, ok, 256);
     return ok;
 }
 
@@ -251,18 +269,6 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
         for (int k = 0; k < n; k++)
             packed[c * n + k] = attr[c * QGL__ATTR_MAX + k];
     return qgl_split_is_exact(p, packed, n, 1e-5);
-}
-
-/* Whether n floats are the same to the bit (memcmp's verdict, without a call for a few). */
-static inline int same_bits(const float *a, const float *b, int n)
-{
-    for (int k = 0; k < n; k++) {
-        uint32_t x, y;
-        memcpy(&x, a + k, sizeof x), memcpy(&y, b + k, sizeof y);
-        if (x != y)
-            return 0;
-    }
-    return 1;
 }
 
 /* Whether corners i and j carry the same captured attributes (positions aside), and the same
@@ -738,8 +744,9 @@ double qgl__gain_limit(qgl_context *ctx, const qgl__state *st, const qgl__verts 
  * follows the scene. The picture is right either way. */
 static int skip_lit_test(qgl_context *ctx, double area_px)
 {
-    double rate = (ctx->lit_passed + 1.0) / (ctx->lit_tested + 2.0);
-    return rate * qgl__split_saving(ctx, area_px) < LIT_TEST_NS && (ctx->lit_skipped++ & 15) != 0;
+    qgl__rate *r = &ctx->lit_rate;
+    double rate = (r->passed + 1.0) / (r->tested + 2.0);
+    return rate * qgl__split_saving(ctx, area_px) < LIT_TEST_NS && (r->skipped++ & 15) != 0;
 }
 
 /* Whether the split of a planar quad (every w > 0) shows the same pixels as the mean value
@@ -776,11 +783,8 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
             invisible = nm * nm >= 0.999 * len2 * mm && gain_within(px, clip, n, len2, limit * mm / fabs(nm), p);
         }
     }
-    if (lit) {
-        ctx->lit_tested++, ctx->lit_passed += (unsigned)invisible;
-        if (ctx->lit_tested >= 512) /* a recent rate: older quads count half at each halving */
-            ctx->lit_tested /= 2, ctx->lit_passed /= 2;
-    }
+    if (lit)
+        rate_note(&ctx->lit_rate, invisible, 512);
     return invisible;
 }
 
@@ -855,7 +859,7 @@ QGL_API void qgl_gl_set_split_error(qgl_context *ctx, float scale)
     if (!ctx)
         return;
     ctx->split_error = scale;
-    ctx->lit_tested = ctx->lit_passed = ctx->lit_skipped = 0; /* the rate was for the old budget */
+    ctx->lit_rate = (qgl__rate){0}; /* the rate was for the old budget */
 }
 
 /* ---- drawing through the driver ---------------------------------------------------------------- */

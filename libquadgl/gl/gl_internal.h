@@ -474,6 +474,12 @@ typedef struct qgl__lightval {
      * the unit spot direction */
     double at[3], to[3], half[3], spot[3];
 } qgl__lightval;
+/* How often a test that only saves time where it passes has passed lately: tested and passed
+ * halve together past a window, so older results count half at each halving; skipped counts
+ * the tests left out, so that one in several is made all the same. */
+typedef struct qgl__rate {
+    unsigned tested, passed, skipped;
+} qgl__rate;
 typedef struct qgl__lightvals {
     int lights_valid, materials_valid, normal_valid, normal_ok, current_valid;
     GLfloat cur_normal[4], cur_colour[4]; /* the driver's current values, read once per draw */
@@ -605,8 +611,8 @@ struct qgl_context {
     size_t multi_cap, multi_cap2;
     qgl__state state;         /* the state of the last draw (state.c) */
     qgl__lightvals lightvals; /* light.c's copy of the light values, for the planner */
-    unsigned lit_tested, lit_passed, lit_skipped; /* lit quads judged lately (split_invisible) */
-    unsigned par_tested, par_passed, par_skipped; /* parallelograms' values tested lately (draw.c) */
+    qgl__rate lit_rate;       /* lit quads judged lately (split_invisible) */
+    qgl__rate par_rate;       /* parallelograms' values tested lately (draw.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */

@@ -109,9 +109,8 @@ static void fetch_lights(qgl_context *ctx, const qgl__key *k)
         }
         normalize3(L->to);
         normalize3(L->spot);
-        double h[3] = {L->to[0], L->to[1], L->to[2] + 1};
-        normalize3(h);
-        memcpy(L->half, h, sizeof h);
+        L->half[0] = L->to[0], L->half[1] = L->to[1], L->half[2] = L->to[2] + 1;
+        normalize3(L->half);
     }
     gl->GetFloatv(GL_LIGHT_MODEL_AMBIENT, lv->model_ambient);
 }
@@ -176,11 +175,12 @@ static void light_vertex(const qgl__key *k, const qgl__lightvals *lv, const floa
         for (int c = 0; c < 3; c++)
             amb[c] += att * L->amb[c];
         if (nv > 0) {
-            double h[3] = {L->half[0], L->half[1], L->half[2]};
+            double h[3];
             if (positional || local) {
                 h[0] = VP[0] + V[0], h[1] = VP[1] + V[1], h[2] = VP[2] + V[2];
                 normalize3(h);
-            }
+            } else
+                memcpy(h, L->half, sizeof h);
             double nh = fmax(dot3(n, h), 0);
             double s = att * (nh > 0 ? pow(nh, shininess) : (shininess == 0 ? 1 : 0));
             for (int c = 0; c < 3; c++) {
