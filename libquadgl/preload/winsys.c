@@ -104,6 +104,35 @@ PL_EXPORT void glXDestroyContext(void *dpy, void *ctx)
         real_fn(dpy, ctx);
 }
 
+/* GLX functions that neither change GL state nor show a frame: configurations, drawables,
+ * queries, swap intervals. SDL and GLEW look these up through glXGetProcAddress, and taking
+ * them for unknown GL calls turned off batching and state tracking in every such program (a
+ * full state query per draw, whose texture-unit switches make llvmpipe re-emit its fragment
+ * state: chromium-bsu's frames grew fivefold in the driver's memory). Any other glX name still
+ * counts as unknown (glXCopyContext, glXBindTexImageEXT, glXUseXFont, glXWaitGL, a swap). */
+static const char *const pl_glx_inert[] = {
+    "glXChooseFBConfig", "glXChooseFBConfigSGIX", "glXChooseVisual", "glXCreateGLXPixmap", "glXCreatePbuffer",
+    "glXCreatePixmap", "glXCreateWindow", "glXDestroyGLXPixmap", "glXDestroyPbuffer", "glXDestroyPixmap",
+    "glXDestroyWindow", "glXGetClientString", "glXGetConfig", "glXGetContextIDEXT", "glXGetCurrentContext",
+    "glXGetCurrentDisplay", "glXGetCurrentDisplayEXT", "glXGetCurrentDrawable", "glXGetCurrentReadDrawable",
+    "glXGetCurrentReadDrawableSGI", "glXGetFBConfigAttrib", "glXGetFBConfigAttribSGIX", "glXGetFBConfigFromVisualSGIX",
+    "glXGetFBConfigs", "glXGetMscRateOML", "glXGetSelectedEvent", "glXGetSwapIntervalMESA", "glXGetSyncValuesOML",
+    "glXGetVideoSyncSGI", "glXGetVisualFromFBConfig", "glXGetVisualFromFBConfigSGIX", "glXIsDirect",
+    "glXQueryContext", "glXQueryContextInfoEXT", "glXQueryCurrentRendererIntegerMESA",
+    "glXQueryCurrentRendererStringMESA", "glXQueryDrawable", "glXQueryExtension", "glXQueryExtensionsString",
+    "glXQueryRendererIntegerMESA", "glXQueryRendererStringMESA", "glXQueryServerString", "glXQueryVersion",
+    "glXSelectEvent", "glXSwapIntervalEXT", "glXSwapIntervalMESA", "glXSwapIntervalSGI", "glXWaitForMscOML",
+    "glXWaitForSbcOML", "glXWaitVideoSyncSGI", "glXWaitX",
+};
+
+static int pl_glx_is_inert(const char *name)
+{
+    for (size_t i = 0; i < sizeof pl_glx_inert / sizeof pl_glx_inert[0]; i++)
+        if (strcmp(name, pl_glx_inert[i]) == 0)
+            return 1;
+    return 0;
+}
+
 /* A GL function the program gets past us could change any state: from then on the GL path
  * reads all of it at every draw. */
 static pl_voidfn pl_getproc_via(const char *real_name, const char *name)
@@ -114,7 +143,8 @@ static pl_voidfn pl_getproc_via(const char *real_name, const char *name)
     if (own)
         return (pl_voidfn)own;
     fn = real_fn ? real_fn(name) : NULL;
-    if (fn && name && name[0] == 'g' && name[1] == 'l' && !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)) {
+    if (fn && name && name[0] == 'g' && name[1] == 'l' && !pl_glx_is_inert(name) &&
+        !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED)) {
         __atomic_store_n(&pl_untracked, 1, __ATOMIC_RELAXED);
         pl_log(PL_LOG_INFO, "%s is not one of ours: the state is read at every draw", name);
     }

@@ -1,9 +1,12 @@
 /* glx_getproc.c: a GLX program that reaches every GL function through glXGetProcAddressARB.
  *
- * Like programs built on GLEW or their own loaders, it names no gl* symbol directly: each
- * one comes from glXGetProcAddressARB. With libquadgl-preload.so preloaded those must be the
- * library's own functions (checked with dladdr), and the quad of ref_quad.h must come out
- * smooth. The frame is written as a PPM to the file named by PT_SHOT. */
+ * Like programs built on GLEW, SDL or their own loaders, it names no gl* symbol directly: each
+ * one comes from glXGetProcAddressARB, and so do the GLX queries SDL and GLEW look up that way.
+ * With libquadgl-preload.so preloaded those must be the library's own functions (checked with
+ * dladdr), and the quad of ref_quad.h must come out smooth. After a first swap (batching starts
+ * with the frames a program shows through us) it draws the quad PT_REPEAT times (default 1),
+ * each in its own glBegin/glEnd, for the statistics line to show whether they were batched.
+ * The frame is written as a PPM to the file named by PT_SHOT. */
 #include <GL/gl.h>
 #include <GL/glx.h>
 #include <X11/Xlib.h>
@@ -22,6 +25,9 @@ typedef void (*fn_clear_color)(GLfloat, GLfloat, GLfloat, GLfloat);
 typedef void (*fn_bitfield)(GLbitfield);
 typedef void (*fn_store)(GLenum, GLint);
 typedef void (*fn_read)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *);
+typedef GLXContext (*fn_current)(void);
+typedef const char *(*fn_extensions)(Display *, int);
+typedef void (*fn_query_drawable)(Display *, GLXDrawable, int, unsigned int *);
 
 static void *get(const char *name)
 {
@@ -61,6 +67,18 @@ int main(void)
     if (!ctx || !glXMakeCurrent(dpy, win, ctx))
         return 2;
     {
+        fn_current current = (fn_current)get("glXGetCurrentContext");
+        fn_extensions extensions = (fn_extensions)get("glXQueryExtensionsString");
+        fn_query_drawable query_drawable = (fn_query_drawable)get("glXQueryDrawable");
+        unsigned int width = 0;
+        query_drawable(dpy, win, GLX_WIDTH, &width);
+        if (current() != ctx || !extensions(dpy, DefaultScreen(dpy)) || width != REF_SIZE) {
+            fprintf(stderr, "glx_getproc: the GLX queries answered wrongly\n");
+            return 1;
+        }
+    }
+    glXSwapBuffers(dpy, win);
+    {
         fn_enum begin = (fn_enum)get("glBegin");
         fn_void end = (fn_void)get("glEnd"), finish = (fn_void)get("glFinish");
         fn_3f color = (fn_3f)get("glColor3f");
@@ -77,12 +95,15 @@ int main(void)
         }
         clear_color(0, 0, 0, 1);
         clear(GL_COLOR_BUFFER_BIT);
-        begin(GL_QUADS);
-        for (int i = 0; i < 4; i++) {
-            color(ref_c[i][0], ref_c[i][1], ref_c[i][2]);
-            vertex(ref_v[i]);
+        int repeat = getenv("PT_REPEAT") ? atoi(getenv("PT_REPEAT")) : 1;
+        for (int k = 0; k < repeat; k++) {
+            begin(GL_QUADS);
+            for (int i = 0; i < 4; i++) {
+                color(ref_c[i][0], ref_c[i][1], ref_c[i][2]);
+                vertex(ref_v[i]);
+            }
+            end();
         }
-        end();
         finish();
         read_buffer(GL_BACK);
         store(GL_PACK_ALIGNMENT, 1);

@@ -10,6 +10,9 @@
  * quads it drew (and its counters add up), and its picture is right. For the quad programs
  * (freeglut, a program that finds every function through glXGetProcAddressARB, PyOpenGL
  * which dlopens libGL) the picture is compared with the mean value reference of ref_quad.h.
+ * The getproc program also looks up GLX queries that way, as SDL and GLEW do, then draws its
+ * quad eight times over, each in its own glBegin/glEnd: they must reach the driver batched
+ * (at most two draws), since nothing it looked up can change GL state behind the library.
  * glxgears (quad strips and quads in display lists, flat shading, lighting) is frozen in
  * time and photographed at frame 5 by tests/apps/appshim.c, natively and preloaded (replay, auto, mvc): its
  * quads are planar and flat shaded, so smoothing must not change them; at most 0.5% of the
@@ -123,22 +126,23 @@ static int run(char *const argv[], char *const extra[], const char *errfile)
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-/* The CPU fallback's count on the last statistics line read by stats_quads. */
-static long long last_subdiv;
+/* The CPU fallback's and the draws' counts on the last statistics line read by stats_quads. */
+static long long last_subdiv, last_draws;
 
 /* The quads counted by the statistics line in errfile (its stderr), or -1 without one. */
 static long long stats_quads(const char *errfile, const char *who)
 {
     char line[512];
-    long long q = -1, mvc, split, subdiv, pass;
+    long long q = -1, mvc, split, subdiv, pass, draws = -1;
     FILE *f = fopen(errfile, "r");
     if (!f)
         return -1;
     while (fgets(line, sizeof line, f)) {
-        if (sscanf(line, "quadgl: %lld quads: mvc=%lld, split=%lld, subdiv=%lld, passthrough=%lld", &q, &mvc, &split,
-                   &subdiv, &pass) == 5) {
+        if (sscanf(line, "quadgl: %lld quads: mvc=%lld, split=%lld, subdiv=%lld, passthrough=%lld, draws=%lld", &q,
+                   &mvc, &split, &subdiv, &pass, &draws) >= 5) {
             fprintf(stderr, "%s: %s", who, line);
             last_subdiv = subdiv;
+            last_draws = draws;
             if (mvc + split + subdiv + pass != q) {
                 fprintf(stderr, "%s: the counters do not add up\n", who);
                 q = -1;
@@ -174,18 +178,21 @@ static void temp_names(char shot[64], char err[64], const char *tag)
     snprintf(err, 64, "/tmp/quadgl-x11-%d-%s.err", (int)getpid(), tag);
 }
 
-/* A quad program (or script): preloaded, counted, compared with the reference. */
-static int check_quad_program(char *const argv[], const char *preload, const char *who)
+/* A quad program (or script): preloaded, counted, compared with the reference; with repeat
+ * above 1 it draws its quad that many times, each in its own glBegin/glEnd, and they must
+ * have been batched. */
+static int check_quad_program(char *const argv[], const char *preload, const char *who, int repeat)
 {
-    char shot[64], err[64], pre[600], shotenv[80];
+    char shot[64], err[64], pre[600], shotenv[80], repenv[32];
     int w = 0, h = 0, rc, bad;
     unsigned char *px;
     long long quads;
     temp_names(shot, err, who);
     snprintf(pre, sizeof pre, "LD_PRELOAD=%s", preload);
     snprintf(shotenv, sizeof shotenv, "PT_SHOT=%s", shot);
+    snprintf(repenv, sizeof repenv, "PT_REPEAT=%d", repeat);
     {
-        char *extra[] = {pre, shotenv, "QUADGL_STATS=1", NULL};
+        char *extra[] = {pre, shotenv, repenv, "QUADGL_STATS=1", NULL};
         rc = run(argv, extra, err);
     }
     quads = stats_quads(err, who);
@@ -199,8 +206,12 @@ static int check_quad_program(char *const argv[], const char *preload, const cha
     }
     bad = ref_check(px, who);
     free(px);
-    if (quads < 1) {
-        fprintf(stderr, "%s: the statistics line shows no quad captured\n", who);
+    if (quads < repeat) {
+        fprintf(stderr, "%s: the statistics line shows %lld quads captured, not %d\n", who, quads, repeat);
+        return 1;
+    }
+    if (repeat > 1 && !(last_draws >= 1 && last_draws <= 2)) {
+        fprintf(stderr, "%s: %d quads in a row took %lld draws: not batched\n", who, repeat, last_draws);
         return 1;
     }
     return bad ? 1 : 0;
@@ -321,11 +332,11 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "glut") == 0 || strcmp(argv[1], "getproc") == 0) {
         char *prog[] = {argv[3], NULL};
-        return check_quad_program(prog, argv[2], argv[1]);
+        return check_quad_program(prog, argv[2], argv[1], strcmp(argv[1], "getproc") == 0 ? 8 : 1);
     }
     if (strcmp(argv[1], "pyopengl") == 0) {
         char *prog[] = {"/usr/bin/python3", argv[3], NULL};
-        return check_quad_program(prog, argv[2], argv[1]);
+        return check_quad_program(prog, argv[2], argv[1], 1);
     }
     if (strcmp(argv[1], "gears") == 0)
         return check_gears(argv[2], argv[3]);
