@@ -107,9 +107,9 @@ PL_EXPORT void glXDestroyContext(void *dpy, void *ctx)
 /* GLX functions that neither change GL state nor show a frame: configurations, drawables,
  * queries, swap intervals. SDL and GLEW look these up through glXGetProcAddress, and taking
  * them for unknown GL calls turned off batching and state tracking in every such program (a
- * full state query per draw, whose texture-unit switches make llvmpipe re-emit its fragment
- * state: chromium-bsu's frames grew fivefold in the driver's memory). Any other glX name still
- * counts as unknown (glXCopyContext, glXBindTexImageEXT, glXUseXFont, glXWaitGL, a swap). */
+ * full state query per draw, whose texture-unit switches make llvmpipe store its fragment
+ * state again at every draw: tools/sdl-bench.sh). Any other glX name still counts as unknown
+ * (glXCopyContext, glXBindTexImageEXT, glXUseXFont, glXWaitGL, a swap). */
 static const char *const pl_glx_inert[] = {
     "glXChooseFBConfig", "glXChooseFBConfigSGIX", "glXChooseVisual", "glXCreateGLXPixmap", "glXCreatePbuffer",
     "glXCreatePixmap", "glXCreateWindow", "glXDestroyGLXPixmap", "glXDestroyPbuffer", "glXDestroyPixmap",
