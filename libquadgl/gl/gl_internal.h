@@ -715,7 +715,8 @@ typedef struct qgl__mesh_prim {
     uint32_t first, count;    /* vertices of the mesh */
     uint32_t chg0, nchg;      /* its glMaterial calls (vertex indices of the mesh) */
     uint32_t facts0;          /* its first quad's facts */
-    uint32_t idx0;            /* GL_QUADS: its first triangle index in the buffer */
+    uint32_t idx0;            /* GL_QUADS: its first index in the buffer */
+    uint32_t at;              /* others: its first vertex in the buffer */
     unsigned given;           /* attributes (QGL__A_EDGE too) given inside its glBegin/glEnd; the
                                  others were current values (a replay sets them outside) */
 } qgl__mesh_prim;

@@ -8,14 +8,14 @@
  * of their own, so later draws upload nothing. A draw reads the state (the groups that
  * changed), and for each quad primitive decides from the facts alone whether the driver's own
  * split serves it exactly; then runs of consecutive primitives of one mode that the driver
- * draws as they are become one glMultiDrawArrays from the buffer, as the driver's own display
- * list would merge them (GL_QUADS as indexed triangles split 0-1-3, 1-2-3: what the driver's
- * display lists draw, where its immediate mode splits 0-1-2, 0-2-3; a smooth non-affine quad
- * shows which; in polygon mode line or point as quads, whose outlines and edge flags the
- * driver's lists keep), and only the quad primitives that need smoothing go through the planner (qgl__draw_batch with the cached facts). Order is kept throughout (blending and
- * equal depths make it visible). Primitives with glMaterial calls inside, and meshes with
- * generic attributes, are replayed through immediate mode, the only way to give those per
- * vertex to fixed function. */
+ * draws as they are become one multi-draw from the buffer, as the driver's own display list
+ * would merge them (GL_QUADS as indexed quads, each distinct vertex once, as the driver's lists
+ * draw them: they split a quad 0-1-3, 1-2-3 where its immediate mode splits 0-1-2, 0-2-3, and
+ * a smooth non-affine quad shows which), and only the quad primitives that need smoothing go
+ * through the planner (qgl__draw_batch with the cached facts). Order is kept throughout
+ * (blending and equal depths make it visible). Primitives with glMaterial calls inside, and
+ * meshes with generic attributes, are replayed through immediate mode, the only way to give
+ * those per vertex to fixed function. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -136,8 +136,84 @@ void qgl__mesh_free(struct qgl__gl *gl, const void *owner, qgl__mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-/* The vertices in the mesh's own buffer (made, or refilled when they changed); 0 when the
- * buffer belongs to another share group or the driver refused. */
+/* The arrays a vertex's data is read from: positions, the attributes of mask (by row of
+ * QGL__ATTRIBS), edge flags; base, bytes per vertex and the mesh's offset field of each. */
+typedef struct vertex_arrays {
+    int n;
+    const unsigned char *base[QGL__NATTR + 2];
+    size_t size[QGL__NATTR + 2], *off[QGL__NATTR + 2];
+} vertex_arrays;
+
+static void arrays_of(qgl__mesh *m, vertex_arrays *va)
+{
+    const qgl__verts *v = &m->v;
+    int k = 0;
+    va->base[k] = (const unsigned char *)v->pos, va->size[k] = 16, va->off[k++] = &m->off_pos;
+    for (int a = 0; a < QGL__NATTR; a++)
+        if (v->mask & (1u << a))
+            va->base[k] = (const unsigned char *)v->attr[a], va->size[k] = 4 * (size_t)qgl__attribs[a].floats,
+            va->off[k++] = &m->off[a];
+    if (v->mask & QGL__A_EDGE)
+        va->base[k] = v->edge, va->size[k] = 1, va->off[k++] = &m->off_edge;
+    va->n = k;
+}
+
+/* A vertex's bucket, from its position alone: vertices that differ only elsewhere (a cube's
+ * corner with three normals) share it, and same_vertex tells them apart. */
+static size_t vertex_bucket(const float *pos, size_t mask)
+{
+    uint32_t w[4];
+    memcpy(w, pos, sizeof w);
+    uint64_t h = w[0] * 0x9e3779b97f4a7c15u ^ w[1] * 0xc2b2ae3d27d4eb4fu ^ w[2] * 0x165667b19e3779f9u ^
+                 w[3] * 0x27d4eb2f165667c5u;
+    return (size_t)(h ^ h >> 29) & mask;
+}
+
+static int same_vertex(const vertex_arrays *va, size_t i, size_t j)
+{
+    for (int k = 0; k < va->n; k++)
+        if (memcmp(va->base[k] + i * va->size[k], va->base[k] + j * va->size[k], va->size[k]) != 0)
+            return 0;
+    return 1;
+}
+
+/* Where each vertex goes in the mesh's buffer (at[i]) and which vertex each place holds
+ * (order[k]); returns the places used. Primitives drawn as arrays keep their vertices in
+ * runs. GL_QUADS ones are drawn by index, and of their vertices with equal data (a sphere's or
+ * a grid's quads repeat each corner up to four times) one place serves all: the driver, whose
+ * vertex cache is keyed by index, then transforms and lights a shared corner once instead of
+ * once per quad, as its own display lists do after merging equal vertices. slot: cap zeroed
+ * entries (a power of two above the GL_QUADS vertices). */
+static size_t place_vertices(const qgl__mesh *m, const vertex_arrays *va, uint32_t *at, uint32_t *order,
+                             uint32_t *slot, size_t cap)
+{
+    size_t k = 0;
+    for (size_t p = 0; p < m->nprim; p++) {
+        const qgl__mesh_prim *pr = &m->prim[p];
+        size_t end = pr->first + (pr->mode == GL_QUADS ? pr->count / 4 * 4 : pr->count);
+        for (size_t i = pr->first; i < end; i++) {
+            if (pr->mode == GL_QUADS)
+                for (size_t s = vertex_bucket(m->v.pos + 4 * i, cap - 1);; s = (s + 1) & (cap - 1)) {
+                    if (!slot[s]) {
+                        slot[s] = (uint32_t)i + 1;
+                        break;
+                    }
+                    if (same_vertex(va, i, slot[s] - 1)) {
+                        at[i] = at[slot[s] - 1];
+                        goto placed;
+                    }
+                }
+            at[i] = (uint32_t)k;
+            order[k++] = (uint32_t)i;
+        placed:;
+        }
+    }
+    return k;
+}
+
+/* The vertices in the mesh's own buffer (made, or refilled when they changed): each array's
+ * places (place_vertices), then the GL_QUADS primitives' indices; 0 when the buffer belongs
+ * to another share group or the driver refused. */
 static int resident(qgl_context *ctx, qgl__mesh *m, const void *owner)
 {
     struct qgl__gl *gl = &ctx->gl;
@@ -145,59 +221,50 @@ static int resident(qgl_context *ctx, qgl__mesh *m, const void *owner)
         return 0;
     if (m->bo && !m->stale)
         return 1;
-    size_t n = m->v.n, total = 16 * n, nidx = 0;
-    for (int a = 0; a < QGL__NATTR; a++)
-        if (m->v.mask & (1u << a))
-            total += (n * 4 * (size_t)qgl__attribs[a].floats + 15) & ~(size_t)15;
-    if (m->v.mask & QGL__A_EDGE)
-        total += (n + 15) & ~(size_t)15;
+    size_t n = m->v.n, nidx = 0, cap = 16;
     for (size_t i = 0; i < m->nprim; i++)
-        if (m->prim[i].mode == GL_QUADS)
-            nidx += 6 * (m->prim[i].count / 4);
-    uint32_t *idx = nidx ? malloc(nidx * sizeof *idx) : NULL;
-    if (nidx && !idx)
+        nidx += m->prim[i].mode == GL_QUADS ? m->prim[i].count / 4 * 4 : 0;
+    while (cap < 2 * nidx)
+        cap *= 2;
+    vertex_arrays va;
+    arrays_of(m, &va);
+    uint32_t *at = malloc((n ? n : 1) * sizeof *at), *order = malloc((n ? n : 1) * sizeof *order);
+    uint32_t *slot = calloc(cap, sizeof *slot);
+    unsigned char *data = NULL;
+    size_t places = at && order && slot ? place_vertices(m, &va, at, order, slot, cap) : 0, total = 0;
+    for (int k = 0; k < va.n; k++)
+        total += (places * va.size[k] + 15) & ~(size_t)15;
+    if (at && order && slot)
+        data = malloc(total + nidx * sizeof(uint32_t) + 1);
+    if (!data) {
+        free(at), free(order), free(slot);
         return 0;
-    total += nidx * sizeof *idx;
+    }
+    size_t off = 0;
+    for (int k = 0; k < va.n; k++) {
+        for (size_t j = 0; j < places; j++)
+            memcpy(data + off + j * va.size[k], va.base[k] + order[j] * va.size[k], va.size[k]);
+        *va.off[k] = off;
+        off += (places * va.size[k] + 15) & ~(size_t)15;
+    }
+    uint32_t *idx = (uint32_t *)(data + off);
+    size_t q = 0;
+    m->off_idx = off;
+    for (size_t i = 0; i < m->nprim; i++) {
+        qgl__mesh_prim *p = &m->prim[i];
+        p->idx0 = (uint32_t)q;
+        p->at = p->mode != GL_QUADS && p->count ? at[p->first] : 0;
+        for (uint32_t c = p->first; p->mode == GL_QUADS && c < p->first + p->count / 4 * 4; c++)
+            idx[q++] = at[c];
+    }
     if (!m->bo) {
         gl->GenBuffers(1, &m->bo);
         m->owner = owner;
     }
     gl->BindBuffer(GL_ARRAY_BUFFER, m->bo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, NULL, GL_STATIC_DRAW);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(off + nidx * sizeof *idx), data, GL_STATIC_DRAW);
     ctx->stats.uploads++;
-    size_t off = 0;
-    gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(16 * n), m->v.pos);
-    m->off_pos = 0;
-    off = 16 * n;
-    for (int a = 0; a < QGL__NATTR; a++) {
-        if (!(m->v.mask & (1u << a)))
-            continue;
-        size_t bytes = n * 4 * (size_t)qgl__attribs[a].floats;
-        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)bytes, m->v.attr[a]);
-        m->off[a] = off;
-        off += (bytes + 15) & ~(size_t)15;
-    }
-    if (m->v.mask & QGL__A_EDGE) {
-        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)n, m->v.edge);
-        m->off_edge = off;
-        off += (n + 15) & ~(size_t)15;
-    }
-    size_t k = 0;
-    m->off_idx = off;
-    for (size_t i = 0; i < m->nprim; i++) {
-        qgl__mesh_prim *p = &m->prim[i];
-        p->idx0 = (uint32_t)k;
-        if (p->mode != GL_QUADS)
-            continue;
-        for (uint32_t q = 0; q < p->count / 4; q++) {
-            static const int split[6] = {0, 1, 3, 1, 2, 3};
-            for (int c = 0; c < 6; c++)
-                idx[k++] = p->first + 4 * q + (uint32_t)split[c];
-        }
-    }
-    if (nidx)
-        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)off, (GLsizeiptr)(nidx * sizeof *idx), idx);
-    free(idx);
+    free(at), free(order), free(slot), free(data);
     m->stale = 0;
     return 1;
 }
@@ -224,18 +291,17 @@ static void point(qgl_context *ctx, const qgl__mesh *m)
     ctx->material_arrays = 0;
 }
 
-/* Primitives [i0, i1), all the driver's as they are, in as few calls as their modes allow
- * (filled: both faces' polygon mode is GL_FILL). */
-static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1, int filled)
+/* Primitives [i0, i1), all the driver's as they are, in as few calls as their modes allow. */
+static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1)
 {
     while (i0 < i1) {
         size_t j = i0;
         GLenum mode = m->prim[i0].mode;
         while (j < i1 && m->prim[j].mode == mode)
             j++;
-        if (mode == GL_QUADS && filled) { /* consecutive, so are their indices */
-            size_t n = 6 * ((size_t)m->prim[j - 1].idx0 / 6 + m->prim[j - 1].count / 4 - m->prim[i0].idx0 / 6);
-            ctx->gl.DrawElements(GL_TRIANGLES, (GLsizei)n, GL_UNSIGNED_INT,
+        if (mode == GL_QUADS) { /* consecutive, so are their indices */
+            size_t n = (size_t)m->prim[j - 1].idx0 + m->prim[j - 1].count / 4 * 4 - m->prim[i0].idx0;
+            ctx->gl.DrawElements(GL_QUADS, (GLsizei)n, GL_UNSIGNED_INT,
                                  (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)m->prim[i0].idx0));
             ctx->stats.draws++;
             i0 = j;
@@ -245,7 +311,7 @@ static void draw_run(qgl_context *ctx, const qgl__mesh *m, size_t i0, size_t i1,
             !grow((void **)&ctx->multi_count, &ctx->multi_cap2, j - i0, sizeof *ctx->multi_count))
             return;
         for (size_t k = i0; k < j; k++) {
-            ctx->multi_first[k - i0] = (GLint)m->prim[k].first;
+            ctx->multi_first[k - i0] = (GLint)m->prim[k].at;
             ctx->multi_count[k - i0] = (GLsizei)m->prim[k].count;
         }
         if (j - i0 == 1 || !ctx->gl.MultiDrawArrays)
@@ -365,7 +431,7 @@ static int draw_in_order(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, c
                 break;
             if (!pointed)
                 point(ctx, m), pointed = 1;
-            draw_run(ctx, m, run, i, st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL);
+            draw_run(ctx, m, run, i);
             *touched = 1;
         }
         run = i + 1;
@@ -387,9 +453,8 @@ static int draw_in_order(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, c
     return quads;
 }
 
-/* Native primitives (ways[i] == 0) of one mode in one multi-draw (GL_QUADS as the driver's
- * lists split them where filled, as quads where outlined). */
-static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode, int filled)
+/* Native primitives (ways[i] == 0) of one mode in one multi-draw. */
+static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode)
 {
     size_t n = 0;
     for (size_t i = 0; i < m->nprim; i++)
@@ -405,12 +470,12 @@ static int draw_mode(qgl_context *ctx, const qgl__mesh *m, GLenum mode, int fill
         const qgl__mesh_prim *p = &m->prim[i];
         if (ctx->ways[i] || p->mode != mode)
             continue;
-        ctx->multi_first[n] = (GLint)p->first;
-        ctx->multi_count[n] = (GLsizei)(mode == GL_QUADS && filled ? 6 * (p->count / 4) : p->count);
+        ctx->multi_first[n] = (GLint)p->at;
+        ctx->multi_count[n] = (GLsizei)(mode == GL_QUADS ? p->count / 4 * 4 : p->count);
         ctx->multi_offset[n++] = (const void *)(uintptr_t)(m->off_idx + 4 * (size_t)p->idx0);
     }
-    if (mode == GL_QUADS && filled)
-        ctx->gl.MultiDrawElements(GL_TRIANGLES, ctx->multi_count, GL_UNSIGNED_INT, ctx->multi_offset, (GLsizei)n);
+    if (mode == GL_QUADS)
+        ctx->gl.MultiDrawElements(GL_QUADS, ctx->multi_count, GL_UNSIGNED_INT, ctx->multi_offset, (GLsizei)n);
     else
         ctx->gl.MultiDrawArrays(mode, ctx->multi_first, ctx->multi_count, (GLsizei)n);
     ctx->stats.draws++;
@@ -440,7 +505,7 @@ static int draw_by_kind(qgl_context *ctx, const qgl__state *st, qgl__mesh *m, co
         point(ctx, m);
         *touched = 1;
         for (GLenum mode = GL_POINTS; mode <= GL_TRIANGLE_STRIP_ADJACENCY; mode++)
-            draw_mode(ctx, m, mode, st->polygon_mode[0] == GL_FILL && st->polygon_mode[1] == GL_FILL);
+            draw_mode(ctx, m, mode);
     }
     if (grouped > 1 && draw_group(ctx, st, m, 0, m->nprim, ctx->ways)) {
         for (size_t i = 0; i < m->nprim; i++)

@@ -666,6 +666,71 @@ static void scene_list_strips(pt_run *r)
     r->min_quads = 24;
 }
 
+/* A display list of a 12 x 12 grid of GL_QUADS (each inner corner given four times, as a
+ * sphere's or a terrain's quads give them) with colours affine in the position, so that every
+ * method draws it as the driver does, and a quad strip after it; drawn filled, then outlined.
+ * The driver's own lists merge the equal corners, so its vertex stage runs about once per
+ * distinct vertex: where the library draws the list, the vertex shader must not run once
+ * per quad corner instead (ARB_pipeline_statistics_query counts it). */
+static void grid_corner(int i, int j)
+{
+    float x = (float)i / 12.0f, y = (float)j / 12.0f;
+    glColor4f(0.2f + 0.5f * x, 0.3f + 0.4f * y, 0.7f - 0.3f * x, 1);
+    glVertex2f(-0.9f + 1.2f * x, -0.9f + 1.2f * y);
+}
+
+static void scene_list_grid(pt_run *r)
+{
+    enum { N = 12 };
+    GLuint list = glGenLists(1), query = 0;
+    const char *method = getenv("QUADGL_METHOD");
+    int count = method && (!strcmp(method, "split") || !strcmp(method, "auto"));
+    pt_begin_frame();
+    glNewList(list, GL_COMPILE);
+    glBegin(GL_QUADS);
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            grid_corner(i, j), grid_corner(i + 1, j);
+            grid_corner(i + 1, j + 1), grid_corner(i, j + 1);
+        }
+    glEnd();
+    glBegin(GL_QUAD_STRIP);
+    for (int k = 0; k <= 4; k++) {
+        glColor4f(0.9f, 0.2f * (float)k, 0.1f, 1);
+        glVertex2f(0.45f, -0.9f + 0.3f * (float)k);
+        glVertex2f(0.85f, -0.9f + 0.3f * (float)k);
+    }
+    glEnd();
+    glEndList();
+    if (strstr((const char *)glGetString(GL_EXTENSIONS), "GL_ARB_pipeline_statistics_query"))
+        glGenQueries(1, &query);
+    if (query)
+        glBeginQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB, query);
+    glCallList(list);
+    if (query) {
+        GLuint runs = 0;
+        glEndQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB);
+        glGetQueryObjectuiv(query, GL_QUERY_RESULT, &runs);
+        glDeleteQueries(1, &query);
+        /* 169 distinct corners and 10 strip vertices; 586 where every corner runs */
+        if (pt_preloaded())
+            printf("list_grid: the vertex stage ran %u times\n", runs);
+        if (count && pt_preloaded() && runs > 2 * (N + 1) * (N + 1) + 10)
+            snprintf(r->failure, sizeof r->failure, "the vertex stage ran %u times for %d distinct vertices", runs,
+                     (N + 1) * (N + 1) + 10);
+    }
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glPushMatrix();
+    glTranslatef(0.95f, 0.95f, 0);
+    glScalef(0.5f, 0.5f, 1);
+    glCallList(list);
+    glPopMatrix();
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDeleteLists(list, 1);
+    r->native_equal = 1;
+    r->min_quads = 2 * (N * N + 4);
+}
+
 /* Thin quad strips of a spiral, one glBegin/glEnd each, added up by blending (a hypnosis
  * wheel): where the driver's triangles leave a shared edge's pixel to both or to neither, the
  * sum shows it, so the strips must reach the rasterizer as the driver's own strips do. Each
@@ -1363,6 +1428,7 @@ static const pt_scene scenes[] = {
     {"quad_materials", scene_quad_materials},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
+    {"list_grid", scene_list_grid},
     {"strip_blend", scene_strip_blend},
     {"list_depth", scene_list_depth},
 };
