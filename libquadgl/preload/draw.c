@@ -276,7 +276,11 @@ void pl_prim_direct(pl_ctx *x)
 {
     pl_prim *p = &x->prim;
     const qgl__verts *b = &x->batch.v;
-    if (b->n + 4 > PL_BATCH_MAX || !pl_batch_open(x, p))
+    /* Vertices in the batch: it was open for the primitive before, and a call since that
+     * could close it (a program bound) would have drawn it first, so only what no call
+     * marks is asked again (a program's first quad per batch pays the whole question). */
+    int open = b->n ? !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED) : pl_batch_open(x, p);
+    if (b->n + 4 > PL_BATCH_MAX || !open)
         return;
     /* what the primitive does not give its vertices take, as the batch's earlier ones did:
      * the current values (known, mostly) */
