@@ -14,7 +14,8 @@
 # should move. The planner's costs are fixed (QUADGL_COSTS, unless set: this machine's
 # calibration, rounded), since a calibration timed under callgrind would move `auto`'s
 # choices from run to run. A program that animates by anything but the frozen time draws
-# other frames under callgrind's slowness, and its figures then differ between runs.
+# other frames under callgrind's slowness, and its figures then differ between runs ("-" where
+# the later frame took fewer instructions than the earlier one).
 set -eu
 . "$(dirname "$0")/apps-lib.sh"
 
@@ -61,10 +62,12 @@ for name in "$@"; do
     native=""
     for m in native $methods; do
         a=$(count "$name" "$m" "$first") b=$(count "$name" "$m" "$last")
-        line=$(echo "$a $b" | awk -v n="$((last - first))" '{ printf "%.2f %.2f", ($3 - $1) / n / 1e6, ($4 - $2) / n / 1e6 }')
+        # fewer instructions to the later frame: the two runs drew different frames
+        line=$(echo "$a $b" | awk -v n="$((last - first))" '{ if ($3 < $1 || $4 < $2) print "- -";
+            else printf "%.2f %.2f", ($3 - $1) / n / 1e6, ($4 - $2) / n / 1e6 }')
         own=${line% *} other=${line#* }
         [ "$m" = native ] && native=$own
-        ratio=$(awk -v o="$own" -v n="$native" 'BEGIN { if (n > 0) printf "%.2f", o / n; else print "-" }')
+        ratio=$(awk -v o="$own" -v n="$native" 'BEGIN { if (n > 0 && o != "-") printf "%.2f", o / n; else print "-" }')
         printf '| %s | %s | %s | %s | %s |\n' "$name" "$m" "$own" "$other" "$ratio"
     done
 done

@@ -21,20 +21,47 @@ void qgl__set_current(struct qgl__gl *gl, int a, const float *v)
     }
 }
 
-void qgl__attrib_array(struct qgl__gl *gl, int a, int on, const void *ptr)
+/* Attribute a's array enabled from ptr, or disabled; *enabled is what the VAO holds, so that
+ * an array disabled already costs no call (its pointer is never read): a program's list
+ * calls point the arrays again for each list, and most of the eleven arrays stay off. */
+static void attrib_array(struct qgl__gl *gl, unsigned *enabled, int a, int on, const void *ptr)
 {
     int floats = qgl__attribs[a].floats;
+    unsigned bit = 1u << a;
+    if (!on && !(*enabled & bit))
+        return;
+    if (qgl__attribs[a].unit >= 0)
+        gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)qgl__attribs[a].unit);
+    if (!on) {
+        gl->DisableClientState(qgl__attribs[a].array);
+        *enabled &= ~bit;
+        return;
+    }
     switch (a) {
     case QGL__AT_COLOR: gl->ColorPointer(floats, GL_FLOAT, 0, ptr); break;
     case QGL__AT_NORMAL: gl->NormalPointer(GL_FLOAT, 0, ptr); break;
     case QGL__AT_COLOR2: gl->SecondaryColorPointer(floats, GL_FLOAT, 0, ptr); break;
     case QGL__AT_FOG: gl->FogCoordPointer(GL_FLOAT, 0, ptr); break;
-    default:
-        gl->ClientActiveTexture(GL_TEXTURE0 + (GLenum)qgl__attribs[a].unit);
-        gl->TexCoordPointer(floats, GL_FLOAT, 0, ptr);
+    default: gl->TexCoordPointer(floats, GL_FLOAT, 0, ptr);
     }
-    if (on)
+    if (!(*enabled & bit))
         gl->EnableClientState(qgl__attribs[a].array);
-    else
-        gl->DisableClientState(qgl__attribs[a].array);
+    *enabled |= bit;
+}
+
+void qgl__point_arrays(qgl_context *ctx, unsigned mask, size_t pos, const size_t off[QGL__NATTR], size_t edge)
+{
+    struct qgl__gl *gl = &ctx->gl;
+    gl->VertexPointer(4, GL_FLOAT, 0, (const void *)(uintptr_t)pos);
+    gl->EnableClientState(GL_VERTEX_ARRAY);
+    for (int a = 0; a < QGL__NATTR; a++)
+        attrib_array(gl, &ctx->vao_arrays, a, (mask >> a) & 1, (const void *)(uintptr_t)off[a]);
+    if (mask & QGL__A_EDGE) {
+        gl->EdgeFlagPointer(0, (const void *)(uintptr_t)edge);
+        if (!(ctx->vao_arrays & QGL__A_EDGE))
+            gl->EnableClientState(GL_EDGE_FLAG_ARRAY);
+    } else if (ctx->vao_arrays & QGL__A_EDGE) {
+        gl->DisableClientState(GL_EDGE_FLAG_ARRAY);
+    }
+    ctx->vao_arrays = (ctx->vao_arrays & ~(unsigned)QGL__A_EDGE) | (mask & QGL__A_EDGE);
 }

@@ -971,15 +971,7 @@ static int upload(qgl_context *ctx, const qgl__verts *v, size_t nidx)
     qgl__stream_end(ctx);
     if (nidx)
         gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->stream.buf); /* our VAO's */
-    gl->VertexPointer(4, GL_FLOAT, 0, (const void *)(uintptr_t)off[QGL__NATTR]);
-    gl->EnableClientState(GL_VERTEX_ARRAY);
-    for (int a = 0; a < QGL__NATTR; a++)
-        qgl__attrib_array(gl, a, (v->mask >> a) & 1, (const void *)(uintptr_t)off[a]);
-    gl->EdgeFlagPointer(0, (const void *)(uintptr_t)off[QGL__NATTR + 1]);
-    if (v->mask & QGL__A_EDGE)
-        gl->EnableClientState(GL_EDGE_FLAG_ARRAY);
-    else
-        gl->DisableClientState(GL_EDGE_FLAG_ARRAY);
+    qgl__point_arrays(ctx, v->mask, off[QGL__NATTR], off, off[QGL__NATTR + 1]);
     point_materials(ctx, v, off[QGL__NATTR + 2]);
     return 1;
 }

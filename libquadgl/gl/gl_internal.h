@@ -311,8 +311,10 @@ void qgl__matrun_to(struct qgl__gl *gl, qgl__matrun *r, size_t vertex);
 
 /* The driver's current value of attribute a is set to v (qgl__attribs[a].floats of them). */
 void qgl__set_current(struct qgl__gl *gl, int a, const float *v);
-/* Client array of attribute a: enabled or not, from ptr (floats, tightly packed). */
-void qgl__attrib_array(struct qgl__gl *gl, int a, int on, const void *ptr);
+/* Our VAO's fixed-function arrays at offsets into the bound GL_ARRAY_BUFFER (floats, tightly
+ * packed): positions (4) at pos, the attributes of mask at off[a], edge flags (QGL__A_EDGE in
+ * mask) at edge; the other arrays disabled. */
+void qgl__point_arrays(qgl_context *ctx, unsigned mask, size_t pos, const size_t off[QGL__NATTR], size_t edge);
 
 int qgl__verts_reserve(qgl__verts *v, size_t n, unsigned mask);
 void qgl__verts_free(qgl__verts *v);
@@ -572,6 +574,8 @@ struct qgl_context {
 
     /* drawing */
     GLuint vao;               /* ours: its arrays point into the stream buffer */
+    unsigned vao_arrays;      /* its arrays enabled (qgl__point_arrays: attribute bits and
+                                 QGL__A_EDGE; positions always) */
     qgl__stream stream;
     qgl__verts sub;           /* fallback output */
     qgl__verts pvmat;         /* draw.c: a batch's glMaterial calls as per-vertex materials */

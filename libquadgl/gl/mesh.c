@@ -276,15 +276,7 @@ static void point(qgl_context *ctx, const qgl__mesh *m)
     gl->BindVertexArray(ctx->vao);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->bo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->bo); /* our VAO's */
-    gl->VertexPointer(4, GL_FLOAT, 0, (const void *)(uintptr_t)m->off_pos);
-    gl->EnableClientState(GL_VERTEX_ARRAY);
-    for (int a = 0; a < QGL__NATTR; a++)
-        qgl__attrib_array(gl, a, (m->v.mask >> a) & 1, (const void *)(uintptr_t)m->off[a]);
-    gl->EdgeFlagPointer(0, (const void *)(uintptr_t)m->off_edge);
-    if (m->v.mask & QGL__A_EDGE)
-        gl->EnableClientState(GL_EDGE_FLAG_ARRAY);
-    else
-        gl->DisableClientState(GL_EDGE_FLAG_ARRAY);
+    qgl__point_arrays(ctx, m->v.mask, m->off_pos, m->off, m->off_edge);
     if (ctx->material_arrays)
         for (GLuint k = 0; k < QGL__NMATERIAL; k++)
             gl->DisableVertexAttribArray(QGL__LOC_MATERIAL + k);
