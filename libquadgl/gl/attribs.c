@@ -23,7 +23,7 @@ void qgl__set_current(struct qgl__gl *gl, int a, const float *v)
 
 /* Attribute a's array enabled from ptr, or disabled; *enabled is what the VAO holds, so that
  * an array disabled already costs no call (its pointer is never read): a program's list
- * calls point the arrays again for each list, and most of the eleven arrays stay off. */
+ * calls point the arrays again for each list, and most of the eight attribute arrays stay off. */
 static void attrib_array(struct qgl__gl *gl, unsigned *enabled, int a, int on, const void *ptr)
 {
     int floats = qgl__attribs[a].floats;
