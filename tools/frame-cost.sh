@@ -34,7 +34,6 @@ done
 command -v valgrind >/dev/null || { echo "frame-cost: needs valgrind (tools/deps.sh)" >&2; exit 1; }
 apps_init "$build"
 apps_xvfb "$apps_size" || { echo "frame-cost: Xvfb cannot start" >&2; exit 1; }
-set -- "$@"
 first=${frames% *} last=${frames#* }
 export APPSHIM_FREEZE=realtime
 export QUADGL_COSTS="${QUADGL_COSTS:-713,8.79,5.69,310}"
