@@ -190,13 +190,12 @@ static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[
     return 1;
 }
 
-/* The verdict is the later tests' too, so it only saves time where it passes: a colour map's
- * cells, which seldom do, would pay for it on top of those tests. Where fewer than one in
- * eight passed lately, only one parallelogram in 16 is tried, so that the rate follows the
- * scene. */
-static int try_parallel(qgl_context *ctx)
+/* For a shortcut whose verdict the later tests reach as well, which only saves time where it
+ * passes (a colour map's cells seldom pass the parallelogram's affinity test, random corner
+ * colours never its invisible split): where fewer than one in eight passed lately, only one
+ * quad in 16 tries it, so that the rate follows the scene. */
+static int worth_trying(qgl__rate *r)
 {
-    qgl__rate *r = &ctx->par_rate;
     return 8 * r->passed >= r->tested || (r->skipped++ & 15) == 0;
 }
 
@@ -260,7 +259,7 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     /* nothing varies over the quad (a flat-coloured face: the commonest case), or on a
      * parallelogram (a glyph, a grid cell) every value is affine: the later tests' verdict */
     unsigned read = ctx->plan_read;
-    if (*planar == 2 ? try_parallel(ctx) && parallel_attribs(ctx, v, read, idx) : attribs_constant(v, read, idx))
+    if (*planar == 2 ? worth_trying(&ctx->par_rate) && parallel_attribs(ctx, v, read, idx) : attribs_constant(v, read, idx))
         return 1;
     if (invisible && split_invisible(ctx, st, v, idx, clip, px, p))
         return 1;
@@ -788,6 +787,114 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
     return invisible;
 }
 
+typedef float qgl__v4f __attribute__((vector_size(16)));
+typedef int32_t qgl__v4i __attribute__((vector_size(16)));
+
+/* c1 - c2 + c3 - c0 of four floats at each corner (colours clamped to [0, 1] as the pipeline
+ * clamps them, NaN kept), in doubles as range_residual sums: four lanes at once. */
+static inline void parallel_diff4(const float *a, const size_t idx[4], int clamp, double out[4])
+{
+    const qgl__v4f zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
+    qgl__v4d f[4];
+    for (int c = 0; c < 4; c++) {
+        qgl__v4f x;
+        memcpy(&x, a + 4 * idx[c], sizeof x);
+        if (clamp) {
+            qgl__v4i lo = x < zero, hi = x > one;
+            x = (qgl__v4f)(((qgl__v4i)x & ~lo & ~hi) | ((qgl__v4i)one & hi));
+        }
+        f[c] = __builtin_convertvector(x, qgl__v4d);
+    }
+    qgl__v4d d = f[1] - f[2] + f[3] - f[0];
+    memcpy(out, &d, sizeof d);
+}
+
+/* Largest |c1 - c2 + c3 - c0| over an attribute's components (size floats at a), clamped
+ * where clamp says: on a parallelogram, whose dependency is (1, -1, 1, -1) / 2, twice the
+ * residual range_residual finds. NaN where a value is NaN. */
+static double parallel_residual(const float *a, int size, const size_t idx[4], int clamp)
+{
+    double d[4], worst = 0;
+    if (size == 4)
+        parallel_diff4(a, idx, clamp, d);
+    else
+        for (int k = 0; k < size; k++) {
+            double f[4];
+            for (int c = 0; c < 4; c++) {
+                f[c] = a[(size_t)size * idx[c] + (size_t)k];
+                f[c] = clamp ? qgl__clamp01(f[c]) : f[c];
+            }
+            d[k] = f[1] - f[2] + f[3] - f[0];
+        }
+    for (int k = 0; k < size; k++)
+        worst = fabs(d[k]) > worst || d[k] != d[k] ? fabs(d[k]) : worst;
+    return worst;
+}
+
+/* Whether split_invisible would judge a quad of this state by its residuals alone, with no
+ * lighting, texture matrix or combiner between the captured values and the picture: the
+ * batch's, worked out once (ctx->plan_fast). */
+static int parallel_state(const qgl_context *ctx, const qgl__state *st)
+{
+    if (ctx->method != QGL_METHOD_AUTO || ctx->split_error < 0 || !st->modelled || st->nonaffine ||
+        st->pv_material || st->lit_cpu)
+        return 0;
+    for (int u = 0; u < st->ffp.nunits; u++) {
+        const qgl__unit_key *uk = &st->ffp.unit[u];
+        if (uk->target && (uk->env == QGL__E_COMBINE || uk->target == QGL__T_CUBE || uk->gen[0] || uk->gen[1] ||
+                           uk->gen[2] || uk->gen[3] || !(st->texmat_identity & (1u << u))))
+            return 0;
+    }
+    return 1;
+}
+
+/* split_invisible's first bound on a parallelogram (object corners p0 + p2 = p1 + p3 with one
+ * w, every clip w > 0: convex on screen), taken before any screen or geometric work. Its
+ * dependency is (1, -1, 1, -1) / 2, so |delta| <= 2 and the bound holds where the colours'
+ * residuals add up to at most SPLIT_COLOUR and every unit's to at most SPLIT_TEXEL texels, in
+ * parallel_residual's units. The values come first: random corner colours fail there, after a
+ * few instructions. A quad this does not pass takes the general tests. */
+static int parallel_invisible(const qgl_context *ctx, const qgl__state *st, const qgl__verts *v, const size_t idx[4])
+{
+    double scale = ctx->split_error > 0 ? ctx->split_error : 1.0, colour = 0;
+    int smooth = st->shade_model != GL_FLAT;
+    if ((v->mask & QGL__A_COLOR) && smooth)
+        colour += parallel_residual(v->col, 4, idx, 1);
+    if ((v->mask & QGL__A_COLOR2) && smooth && (st->ffp.flags & QGL__KF_COLOR_SUM))
+        colour += parallel_residual(v->col2, 3, idx, 1);
+    if ((v->mask & QGL__A_FOG) && st->fog_slope > 0)
+        colour += parallel_residual(v->fog, 1, idx, 0) * st->fog_slope;
+    if (!(colour <= SPLIT_COLOUR * scale))
+        return 0;
+    for (int u = 0; u < st->ffp.nunits; u++) {
+        const qgl__unit_key *uk = &st->ffp.unit[u];
+        if (!uk->target || !(v->mask & (QGL__A_TEX0 << u)))
+            continue; /* untextured, or the current coordinates: constant */
+        const float *t = v->tex[u];
+        double q = t[4 * idx[0] + 3], d[4];
+        for (int c = 1; c < 4; c++)
+            if (!(q > 0) || fabs(t[4 * idx[c] + 3] - q) > 1e-6 * q)
+                return 0;
+        parallel_diff4(t, idx, 0, d);
+        int dims = uk->target == QGL__T_1D ? 1 : uk->target == QGL__T_3D ? 3 : 2;
+        for (int k = 0; k < dims; k++)
+            if (!(fabs(d[k]) / q * st->texsize[u][k] <= SPLIT_TEXEL * scale))
+                return 0;
+    }
+    const float *p[4];
+    for (int c = 0; c < 4; c++)
+        p[c] = v->pos + 4 * idx[c];
+    if (!(p[0][3] > 0) || p[1][3] != p[0][3] || p[2][3] != p[0][3] || p[3][3] != p[0][3])
+        return 0;
+    double d02[3], d13[3], d01[3], c[3];
+    for (int k = 0; k < 3; k++)
+        d02[k] = (double)p[2][k] - p[0][k], d13[k] = (double)p[3][k] - p[1][k], d01[k] = (double)p[1][k] - p[0][k];
+    c[0] = d02[1] * d13[2] - d02[2] * d13[1], c[1] = d02[2] * d13[0] - d02[0] * d13[2];
+    c[2] = d02[0] * d13[1] - d02[1] * d13[0];
+    double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    return qgl__parallelogram(d02, d13, d01) && cc > 0 && cc < INFINITY;
+}
+
 /* Whether the driver may clip at this clip coordinate: outside, or so close inside that the
  * GPU's float transform may land outside (exactly on the plane, as a window-filling quad's
  * corners are, is inside on both). */
@@ -815,6 +922,12 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
         return QGL__P_SPLIT; /* entirely behind the eye: the clipper removes it */
     if (ctx->method == QGL_METHOD_SPLIT)
         return QGL__P_SPLIT;
+    if (ctx->plan_fast && judge && !external && worth_trying(&ctx->fast_rate)) {
+        int ok = parallel_invisible(ctx, st, v, idx);
+        rate_note(&ctx->fast_rate, ok, 256);
+        if (ok)
+            return QGL__P_SPLIT | QGL__P_EITHER;
+    }
     int planar = 0;
     if (ctx->method == QGL_METHOD_SUBDIV) {
         double p[4][3];
@@ -1357,6 +1470,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
     transform_all(st->mvp, v->pos, v->n, ctx->clip);
     ctx->plan_read = attribs_read(st, v->mask); /* the state's, the same for every quad */
     ctx->plan_need = needed_facts(st);
+    ctx->plan_fast = parallel_state(ctx, st);
     plan_runs(ctx, st, v, topo, nq, facts);
     merge_runs(ctx->path, nq);
     if (ctx->shader_level != 120)

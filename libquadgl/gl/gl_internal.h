@@ -589,6 +589,7 @@ struct qgl_context {
     size_t unrolled_facts_cap;
     double *clip;             /* 4 per vertex */
     unsigned plan_read, plan_need; /* the batch's attributes that reach the picture, facts it needs */
+    int plan_fast;            /* draw.c: its state judged by parallel_invisible */
     unsigned char *path;      /* per quad */
     size_t idx_offset;        /* the batch's strip indices in the stream buffer */
     size_t clip_cap, path_cap;
@@ -617,6 +618,7 @@ struct qgl_context {
     qgl__lightvals lightvals; /* light.c's copy of the light values, for the planner */
     qgl__rate lit_rate;       /* lit quads judged lately (split_invisible) */
     qgl__rate par_rate;       /* parallelograms' values tested lately (draw.c) */
+    qgl__rate fast_rate;      /* parallelograms' invisible splits tested lately (draw.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */

@@ -388,6 +388,47 @@ static void lit_verdicts(th_ctx *t, const char *name)
     th_check(wrong == 0, "%s: %d quads judged against the reference lighting", name, wrong);
 }
 
+/* Quad by quad on the grid's parallelograms, unlit: a twist t = c0 - c1 + c2 - c3 added at
+ * corner 2 to blue (colour) or to s (texture, in texels of the 64-texel texture) against the
+ * budget B, half a level or 1/32 texel. At the centre of such a quad the split and the mean
+ * value weights differ by t / 4, which the planner doubles for safety: t <= 0.9 B must split
+ * (its first bound passes), t >= 5 B must not (2.5 B). Most twists pass, so the planner keeps
+ * trying its shortcut for parallelograms on every quad. */
+static void twist_verdicts(th_ctx *t, const char *name, int textured)
+{
+    static const double twists[6] = {0, 0.3, 0.6, 0.9, 5, 12};
+    double budget = textured ? 1.0 / 32 / 64 : 0.5 / 255;
+    int wrong = 0, splits = 0;
+    grid(0, 0);
+    qgl_gl_set_method(t->qgl, QGL_METHOD_AUTO);
+    for (int q = 0; q < N * N; q++) {
+        double tw = twists[q % 6] * budget;
+        float c[4][4], s[4][2];
+        memcpy(c, col[4 * q], sizeof c);
+        memcpy(s, tex[4 * q], sizeof s);
+        if (textured)
+            s[2][0] += (float)tw;
+        else
+            c[2][2] += (float)tw;
+        qgl_quad_batch b = {.topology = QGL_QUADS, .count = 4};
+        b.position = (qgl_attrib){pos[4 * q], 3, 0, 0};
+        b.color = (qgl_attrib){c, 4, 0, 0};
+        if (textured)
+            b.texcoord[0] = (qgl_attrib){s, 2, 0, 0};
+        qgl_gl_reset_stats(t->qgl);
+        qgl_draw_quads(t->qgl, &b);
+        qgl_gl_stats_t st;
+        qgl_gl_stats(t->qgl, &st);
+        int expect = twists[q % 6] < 1;
+        splits += (int)st.split;
+        if ((int)st.split != expect && wrong++ < 5)
+            printf("  %s: quad %d twist %.2f budgets %s\n", name, q, twists[q % 6], expect ? "not split" : "split");
+    }
+    glFinish();
+    printf("%-28s split %d of %d; misjudged %d\n", name, splits, N * N, wrong);
+    th_check(wrong == 0, "%s: %d quads judged against their twist", name, wrong);
+}
+
 /* Bailey's quad: red, blue, green, red corners over most of the screen. */
 static void bailey(th_ctx *t)
 {
@@ -444,6 +485,7 @@ int main(void)
     split = compare(&t, "colour, visible", 0, 255, 0, 0);
     th_check(split == 0, "colour checker: %d quads split", split);
     teeth(&t, "colour, budget x1000", W * H / 20, 16);
+    twist_verdicts(&t, "colour, per quad", 0);
     clamped_grid();
     for (int retained = 0; retained < 2; retained++) {
         split = compare(&t, retained ? "colour, clamped, retained" : "colour, clamped", 0, 1, 0, retained);
@@ -496,6 +538,7 @@ int main(void)
     grid(0, 0.8);
     split = compare(&t, "texture, visible", 1, 255, 0, 0);
     th_check(split == 0, "texture with a visible bilinear term: %d quads split", split);
+    twist_verdicts(&t, "texture, per quad", 1);
     glDisable(GL_TEXTURE_2D);
 
     bailey(&t);
