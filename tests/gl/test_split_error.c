@@ -25,7 +25,9 @@
  * inside the bound splits, one far outside does not (a spot direction left unnormalized or a
  * wrong spot exponent in the planner's lighting fails this; the pictures alone did not).
  * Corners given with their own w (glVertex4f) are held to the same picture, and so are
- * colours affine as given but not once the pipeline clamps them to [0, 1].
+ * colours affine as given but not once the pipeline clamps them to [0, 1]. Unlit, each
+ * parallelogram is judged against its own twist (corner colour or texture coordinate off the
+ * affine value by a multiple of the budget): well inside must split, well outside must not.
  * The retained path (cached facts) plans the same. The costs are fixed (QUADGL_COSTS), so that
  * the planner judges every lit quad rather than leave some untested where this machine's
  * calibration says judging would not pay. */
