@@ -13,6 +13,7 @@
 #include <GL/glext.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <quadgl/quadgl.h>
 
@@ -328,6 +329,22 @@ void qgl__verts_copy_range(qgl__verts *d, size_t i, const qgl__verts *s, size_t 
  * order v2k, v2k+1, v2k+3, v2k+2 (shift 0 keeps the diagonal the driver splits a strip quad
  * on, shift 3 puts the provoking vertex v2k+3 last, where GL_QUADS has it). */
 void qgl__verts_unroll(qgl__verts *d, size_t i, const qgl__verts *s, size_t j, size_t nq, int shift);
+
+/* Vertex i of v from pos and, for each attribute in mask, its row of cur (and the edge flag):
+ * the capture's per-vertex work. Row by row of the table, sizes as constants, so that each copy
+ * is a move or two. */
+static inline __attribute__((always_inline)) void qgl__put_vertex(qgl__verts *v, size_t i, const float (*cur)[4],
+                                                                  unsigned char edge, unsigned mask, const float pos[4])
+{
+    memcpy(v->pos + 4 * i, pos, 4 * sizeof(float));
+#define QGL__PUT(name, floats, current, array, normalized)                                                             \
+    if (mask & (1u << QGL__AT_##name))                                                                               \
+        memcpy(v->attr[QGL__AT_##name] + (size_t)(floats) * i, cur[QGL__AT_##name], (floats) * sizeof(float));
+    QGL__ATTRIBS(QGL__PUT)
+#undef QGL__PUT
+    if (mask & QGL__A_EDGE)
+        v->edge[i] = edge;
+}
 
 /* ---- the fixed-function state a generated program reproduces (its key) ------------------ */
 

@@ -66,19 +66,6 @@ static int join(qgl_context *c, unsigned bit)
     return 1;
 }
 
-static void copy_attribs(qgl_context *c, qgl__verts *v, size_t i, unsigned g)
-{
-    for (int a = 0; a < QGL__NATTR; a++)
-        if (g & (1u << a)) {
-            int k = qgl__attribs[a].floats;
-            memcpy(v->attr[a] + (size_t)k * i, c->cur[a], (size_t)k * sizeof(float));
-        }
-    if (g & QGL__A_EDGE)
-        v->edge[i] = c->cur_edge;
-    if (g & QGL__A_MATERIAL)
-        memcpy(v->mat + QGL__MATERIAL_FLOATS * i, c->cur_mat, sizeof c->cur_mat);
-}
-
 /* Vertices captured before a long primitive is drawn in part: the driver works on the first
  * quads while the application sends the rest (as its own immediate mode does, which keeps
  * its rasterizer threads busy meanwhile), and memory stays bounded. A multiple of 4. */
@@ -112,10 +99,10 @@ static void capture_vertex(qgl_context *c, float x, float y, float z, float w)
     if (v->n >= v->cap && !qgl__verts_reserve(v, v->n + 1, c->given))
         return; /* out of memory: the vertex is lost, the application goes on */
     size_t i = v->n++;
-    float *p = v->pos + 4 * i;
-    p[0] = x, p[1] = y, p[2] = z, p[3] = w;
-    if (c->given)
-        copy_attribs(c, v, i, c->given);
+    const float pos[4] = {x, y, z, w};
+    qgl__put_vertex(v, i, (const float (*)[4])c->cur, c->cur_edge, c->given, pos);
+    if (c->given & QGL__A_MATERIAL)
+        memcpy(v->mat + QGL__MATERIAL_FLOATS * i, c->cur_mat, sizeof c->cur_mat);
 }
 
 static void forget_arrays(qgl_context *c);

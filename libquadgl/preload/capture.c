@@ -403,20 +403,6 @@ static void pl_flush_chunk(pl_ctx *x)
 }
 
 /* Vertex i of v: the position, and for the attributes of mask the values in cur. */
-static inline __attribute__((always_inline)) void pl_put_vertex(qgl__verts *v, size_t i, const float (*cur)[4], unsigned char edge, unsigned mask,
-                          const float pos[4])
-{
-    memcpy(v->pos + 4 * i, pos, 4 * sizeof(float));
-    /* row by row of the table, sizes as constants: the copies are a move or two each */
-#define PL_PUT(name, floats, current, array, normalized)                                     \
-    if (mask & (1u << QGL__AT_##name))                                                     \
-        memcpy(v->attr[QGL__AT_##name] + (size_t)(floats) * i, cur[QGL__AT_##name], (floats) * sizeof(float));
-    QGL__ATTRIBS(PL_PUT)
-#undef PL_PUT
-    if (mask & QGL__A_EDGE)
-        v->edge[i] = edge;
-}
-
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
 {
     pl_prim *p = &x->prim;
@@ -426,7 +412,7 @@ void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
         size_t j = p->base + p->v.n;
         if (PL_LIKELY(j < bv->cap) || (j < PL_BATCH_MAX && qgl__verts_reserve(bv, j + 1, bv->mask))) {
             if (PL_LIKELY(j < PL_BATCH_MAX)) {
-                pl_put_vertex(bv, j, (const float (*)[4])x->cur, x->cur_edge, bv->mask, pos);
+                qgl__put_vertex(bv, j, (const float (*)[4])x->cur, x->cur_edge, bv->mask, pos);
                 p->v.n++;
                 return;
             }
@@ -442,7 +428,7 @@ void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
         p->lost = 1;
         return;
     }
-    pl_put_vertex(&p->v, i, (const float (*)[4])p->cur, p->cur_edge, p->v.mask, pos);
+    qgl__put_vertex(&p->v, i, (const float (*)[4])p->cur, p->cur_edge, p->v.mask, pos);
     for (unsigned g = p->generic_given; g; g &= g - 1) {
         int k = __builtin_ctz(g);
         memcpy(p->generic[k] + 4 * i, p->cur_generic[k], 4 * sizeof(float));
