@@ -872,8 +872,8 @@ static int parallel_invisible(const qgl_context *ctx, const qgl__state *st, cons
             continue; /* untextured, or the current coordinates: constant */
         const float *t = v->tex[u];
         double q = t[4 * idx[0] + 3], d[4];
-        for (int c = 1; c < 4; c++)
-            if (!(q > 0) || fabs(t[4 * idx[c] + 3] - q) > 1e-6 * q)
+        for (int c = 1; c < 4; c++) /* one positive q (NaN fails) */
+            if (!(q > 0) || !(fabs(t[4 * idx[c] + 3] - q) <= 1e-6 * q))
                 return 0;
         parallel_diff4(t, idx, 0, d);
         int dims = uk->target == QGL__T_1D ? 1 : uk->target == QGL__T_3D ? 3 : 2;
