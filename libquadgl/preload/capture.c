@@ -402,7 +402,8 @@ static void pl_flush_chunk(pl_ctx *x)
     p->nmat = 0;
 }
 
-/* Vertex i of v: the position, and for the attributes of mask the values in cur. */
+/* One vertex of the primitive: into the batch where it writes there (direct), else into its
+ * own arrays, which a long primitive draws in chunks. */
 void pl_cap_vertex(pl_ctx *x, float a, float b, float c, float d)
 {
     pl_prim *p = &x->prim;
