@@ -11,6 +11,9 @@
 #include "preload.h"
 
 #include <dlfcn.h>
+#include <link.h>
+#include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,16 +21,30 @@ static const char pl_self_marker = 0;
 
 int pl_untracked;
 
-/* The base address of this library, to recognise our own functions. */
-static void *pl_self_base(void)
+/* The addresses this library is loaded at, to recognise our own functions. dladdr would
+ * do, but it searches the symbols of the library an address lies in, and a driver's has
+ * thousands: 360 lookups cost glmatrix 41 million instructions at its start. */
+static struct {
+    pthread_once_t once;
+    uintptr_t lo, hi;
+} pl_self = {PTHREAD_ONCE_INIT, 0, 0};
+
+static int pl_self_segments(struct dl_phdr_info *info, size_t size, void *data)
 {
-    static void *base;
-    if (!base) {
-        Dl_info info;
-        if (dladdr(&pl_self_marker, &info))
-            base = info.dli_fbase;
+    uintptr_t marker = (uintptr_t)&pl_self_marker, lo = UINTPTR_MAX, hi = 0;
+    (void)size, (void)data;
+    for (int i = 0; i < info->dlpi_phnum; i++) {
+        const ElfW(Phdr) *ph = &info->dlpi_phdr[i];
+        if (ph->p_type != PT_LOAD)
+            continue;
+        uintptr_t a = info->dlpi_addr + ph->p_vaddr;
+        lo = a < lo ? a : lo;
+        hi = a + ph->p_memsz > hi ? a + ph->p_memsz : hi;
     }
-    return base;
+    if (marker < lo || marker >= hi)
+        return 0;
+    pl_self.lo = lo, pl_self.hi = hi;
+    return 1;
 }
 
 const char *pl_self_path(void)
@@ -41,12 +58,15 @@ const char *pl_self_path(void)
     return path;
 }
 
+static void pl_self_find(void)
+{
+    dl_iterate_phdr(pl_self_segments, NULL);
+}
+
 static int pl_is_ours(void *fn)
 {
-    Dl_info info;
-    if (!fn)
-        return 0;
-    return dladdr(fn, &info) && info.dli_fbase == pl_self_base();
+    pthread_once(&pl_self.once, pl_self_find);
+    return fn && (uintptr_t)fn >= pl_self.lo && (uintptr_t)fn < pl_self.hi;
 }
 
 void *pl_next_symbol(const char *name)
