@@ -258,6 +258,8 @@ static int pl_batch_join(pl_ctx *x, const pl_prim *p)
 
 void pl_end_prim(pl_ctx *x, pl_prim *p)
 {
+    if (x->batch.v.n + 4 * pl_prim_quads(p) > PL_BATCH_MAX)
+        pl_batch_flush(x); /* full: drawn, and p may begin the next */
     if (!pl_batchable(x, p)) {
         pl_draw_prim(x, p);
         return;
@@ -280,8 +282,10 @@ void pl_prim_direct(pl_ctx *x)
      * could close it (a program bound) would have drawn it first, so only what no call
      * marks is asked again (a program's first quad per batch pays the whole question). */
     int open = b->n ? !__atomic_load_n(&pl_untracked, __ATOMIC_RELAXED) : pl_batch_open(x, p);
-    if (b->n + 4 > PL_BATCH_MAX || !open)
+    if (!open)
         return;
+    if (b->n + 4 > PL_BATCH_MAX)
+        pl_batch_flush(x); /* full: drawn, and the primitive begins the next */
     /* what the primitive does not give its vertices take, as the batch's earlier ones did:
      * the current values (known, mostly) */
     float unused[4];

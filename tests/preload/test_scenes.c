@@ -456,7 +456,9 @@ static uint64_t draws_since(const uint64_t before[PT_NCOUNTERS])
 }
 
 /* Eighteen single-quad primitives in a row must cost the library a draw or two, not one each;
- * a display list of seven such primitives, called three times under different matrices,
+ * 600 more (cell 0 again, drawn over itself) fill the batch more than once, and a primitive
+ * that finds it full begins the next batch instead of being drawn alone: three draws; a
+ * display list of seven such primitives, called three times under different matrices,
  * uploads its vertices once and takes a draw or two a call. */
 static void scene_batch_draws(pt_run *r)
 {
@@ -474,6 +476,14 @@ static void scene_batch_draws(pt_run *r)
     uint64_t d = draws_since(before);
     if (d > 2)
         snprintf(r->failure, sizeof r->failure, "18 primitives in a row took %llu draws", (unsigned long long)d);
+    pt_counters(before);
+    cell_quad(0, v);
+    cell_colours(0, c);
+    for (int k = 0; k < 600; k++)
+        quad_from(v, c, 0);
+    d = draws_since(before);
+    if (d > 3 && !r->failure[0])
+        snprintf(r->failure, sizeof r->failure, "600 primitives in a row took %llu draws", (unsigned long long)d);
     glNewList(list, GL_COMPILE);
     for (int k = 18; k < 25; k++) {
         cell_quad(k, v);
