@@ -790,44 +790,58 @@ static int split_invisible(qgl_context *ctx, const qgl__state *st, const qgl__ve
 typedef float qgl__v4f __attribute__((vector_size(16)));
 typedef int32_t qgl__v4i __attribute__((vector_size(16)));
 
-/* c1 - c2 + c3 - c0 of four floats at each corner (colours clamped to [0, 1] as the pipeline
- * clamps them, NaN kept), in doubles as range_residual sums: four lanes at once. */
-static inline void parallel_diff4(const float *a, const size_t idx[4], int clamp, double out[4])
+/* c1 - c2 + c3 - c0 of four floats at each corner (texture coordinates), in doubles as
+ * range_residual sums: the floats' differences are exact there, however large the values. */
+static inline void parallel_diff4(const float *a, const size_t idx[4], double out[4])
 {
-    const qgl__v4f zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
     qgl__v4d f[4];
     for (int c = 0; c < 4; c++) {
         qgl__v4f x;
         memcpy(&x, a + 4 * idx[c], sizeof x);
-        if (clamp) {
-            qgl__v4i lo = x < zero, hi = x > one;
-            x = (qgl__v4f)(((qgl__v4i)x & ~lo & ~hi) | ((qgl__v4i)one & hi));
-        }
         f[c] = __builtin_convertvector(x, qgl__v4d);
     }
     qgl__v4d d = f[1] - f[2] + f[3] - f[0];
     memcpy(out, &d, sizeof d);
 }
 
-/* Largest |c1 - c2 + c3 - c0| over an attribute's components (size floats at a), clamped
- * where clamp says: on a parallelogram, whose dependency is (1, -1, 1, -1) / 2, twice the
- * residual range_residual finds. NaN where a value is NaN. */
+/* parallel_residual of four colour components, in floats: clamped to [0, 1], the sum's
+ * rounding (1e-7) is nothing against SPLIT_COLOUR. The largest magnitude is the largest as
+ * integers (NaN's bits above infinity's, so NaN wins and fails every bound). */
+static inline float parallel_colour4(const float *a, const size_t idx[4])
+{
+    const qgl__v4f zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
+    const qgl__v4i magnitude = {INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX};
+    qgl__v4f f[4];
+    for (int c = 0; c < 4; c++) {
+        memcpy(&f[c], a + 4 * idx[c], sizeof f[c]);
+        qgl__v4i lo = f[c] < zero, hi = f[c] > one;
+        f[c] = (qgl__v4f)(((qgl__v4i)f[c] & ~lo & ~hi) | ((qgl__v4i)one & hi));
+    }
+    qgl__v4i m = (qgl__v4i)(f[1] - f[2] + f[3] - f[0]) & magnitude;
+    int32_t a01 = m[0] > m[1] ? m[0] : m[1], a23 = m[2] > m[3] ? m[2] : m[3], worst = a01 > a23 ? a01 : a23;
+    float r;
+    memcpy(&r, &worst, sizeof r);
+    return r;
+}
+
+/* Largest |c1 - c2 + c3 - c0| over an attribute's components (size floats at a; four: the
+ * primary colour), clamped where clamp says (always for four): on a parallelogram, whose
+ * dependency is (1, -1, 1, -1) / 2, twice the residual range_residual finds. NaN where a value
+ * is NaN. */
 static double parallel_residual(const float *a, int size, const size_t idx[4], int clamp)
 {
-    double d[4], worst = 0;
     if (size == 4)
-        parallel_diff4(a, idx, clamp, d);
-    else
-        for (int k = 0; k < size; k++) {
-            double f[4];
-            for (int c = 0; c < 4; c++) {
-                f[c] = a[(size_t)size * idx[c] + (size_t)k];
-                f[c] = clamp ? qgl__clamp01(f[c]) : f[c];
-            }
-            d[k] = f[1] - f[2] + f[3] - f[0];
+        return parallel_colour4(a, idx);
+    double worst = 0;
+    for (int k = 0; k < size; k++) {
+        double f[4];
+        for (int c = 0; c < 4; c++) {
+            f[c] = a[(size_t)size * idx[c] + (size_t)k];
+            f[c] = clamp ? qgl__clamp01(f[c]) : f[c];
         }
-    for (int k = 0; k < size; k++)
-        worst = fabs(d[k]) > worst || d[k] != d[k] ? fabs(d[k]) : worst;
+        double d = f[1] - f[2] + f[3] - f[0];
+        worst = fabs(d) > worst || d != d ? fabs(d) : worst;
+    }
     return worst;
 }
 
@@ -875,7 +889,7 @@ static int parallel_invisible(const qgl_context *ctx, const qgl__state *st, cons
         for (int c = 1; c < 4; c++) /* one positive q (NaN fails) */
             if (!(q > 0) || !(fabs(t[4 * idx[c] + 3] - q) <= 1e-6 * q))
                 return 0;
-        parallel_diff4(t, idx, 0, d);
+        parallel_diff4(t, idx, d);
         int dims = uk->target == QGL__T_1D ? 1 : uk->target == QGL__T_3D ? 3 : 2;
         for (int k = 0; k < dims; k++)
             if (!(fabs(d[k]) / q * st->texsize[u][k] <= SPLIT_TEXEL * scale))
