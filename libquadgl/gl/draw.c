@@ -311,16 +311,24 @@ static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p
     return qgl_split_is_exact(p, ind, ngroups, 1e-5);
 }
 
-int qgl__planar(const double p[4][3])
+/* Whether corners with diagonals d02, d13 and first edge d01 form an exact parallelogram of
+ * nonzero, finite area; n the diagonals' cross product and n2 its squared length either way. */
+static inline int true_parallelogram(const double d02[3], const double d13[3], const double d01[3], double n[3],
+                                     double *n2)
 {
-    double d01[3], d02[3], d13[3], n[3], big = 0, ext = 0;
-    for (int k = 0; k < 3; k++)
-        d01[k] = p[1][k] - p[0][k], d02[k] = p[2][k] - p[0][k], d13[k] = p[3][k] - p[1][k];
     n[0] = d02[1] * d13[2] - d02[2] * d13[1];
     n[1] = d02[2] * d13[0] - d02[0] * d13[2];
     n[2] = d02[0] * d13[1] - d02[1] * d13[0];
-    double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if (qgl__parallelogram(d02, d13, d01) && n2 > 0 && n2 < INFINITY)
+    *n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    return qgl__parallelogram(d02, d13, d01) && *n2 > 0 && *n2 < INFINITY;
+}
+
+int qgl__planar(const double p[4][3])
+{
+    double d01[3], d02[3], d13[3], n[3], n2, big = 0, ext = 0;
+    for (int k = 0; k < 3; k++)
+        d01[k] = p[1][k] - p[0][k], d02[k] = p[2][k] - p[0][k], d13[k] = p[3][k] - p[1][k];
+    if (true_parallelogram(d02, d13, d01, n, &n2))
         return 2; /* the test below passes it as well, at several times the cost */
     for (int k = 0; k < 3; k++)
         for (int c = 0; c < 4; c++) {
@@ -900,13 +908,10 @@ static int parallel_invisible(const qgl_context *ctx, const qgl__state *st, cons
         p[c] = v->pos + 4 * idx[c];
     if (!(p[0][3] > 0) || p[1][3] != p[0][3] || p[2][3] != p[0][3] || p[3][3] != p[0][3])
         return 0;
-    double d02[3], d13[3], d01[3], c[3];
+    double d02[3], d13[3], d01[3], n[3], n2;
     for (int k = 0; k < 3; k++)
         d02[k] = (double)p[2][k] - p[0][k], d13[k] = (double)p[3][k] - p[1][k], d01[k] = (double)p[1][k] - p[0][k];
-    c[0] = d02[1] * d13[2] - d02[2] * d13[1], c[1] = d02[2] * d13[0] - d02[0] * d13[2];
-    c[2] = d02[0] * d13[1] - d02[1] * d13[0];
-    double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    return qgl__parallelogram(d02, d13, d01) && cc > 0 && cc < INFINITY;
+    return true_parallelogram(d02, d13, d01, n, &n2);
 }
 
 /* Whether the driver may clip at this clip coordinate: outside, or so close inside that the
