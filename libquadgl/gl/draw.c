@@ -11,9 +11,10 @@
  * split by the driver; the rest takes the shader path when the state is modelled and the CPU
  * subdivision otherwise. A short run of such split quads next to shader-path quads joins
  * their run (the same picture, one draw fewer). Smooth
- * lighting is exact too where it reads no position (directional lights, infinite viewer) and
- * corners with equal attributes group along parallel edges (a cylinder's quads): the lit
- * colour is then affine over the quad. A retained batch (retain.c) brings these per-quad
+ * lighting is exact too where it reads no position (directional lights, infinite viewer),
+ * corners with equal normals and colours group along parallel edges (a cylinder's quads, a
+ * billboard's one normal) and the texture and fog coordinates are affine: the lit colour is
+ * then affine over the quad. A retained batch (retain.c) brings these per-quad
  * facts precomputed, and skips everything when they make every quad the driver's. Quads are
  * drawn in their original order, as runs of consecutive quads sharing a path (blending and
  * equal depths make order visible). All vertices are uploaded once into our own buffer,
@@ -141,6 +142,10 @@ static int clamped(int a)
 /* Whether n floats are the same to the bit (memcmp's verdict, without a call for a few). */
 static inline int same_bits(const float *a, const float *b, int n)
 {
+    if (n == 4) /* a colour or texture coordinates: two loads a side, inline */
+        return !memcmp(a, b, 4 * sizeof *a);
+    if (n == 3)
+        return !memcmp(a, b, 3 * sizeof *a);
     for (int k = 0; k < n; k++) {
         uint32_t x, y;
         memcpy(&x, a + k, sizeof x), memcpy(&y, b + k, sizeof y);
@@ -164,31 +169,42 @@ static int attribs_constant(const qgl__verts *v, unsigned read, const size_t idx
     return 1;
 }
 
-/* On a parallelogram, whether those attributes are affine, by qgl_split_is_exact's rule at
- * 1e-5 (corner 0 from the others, whose barycentrics there are 1, -1, 1): its values only,
- * with no geometry. Texture coordinates are judged before their texture matrix (a linear
- * map keeps affine coordinates affine). */
-static int parallel_values(const qgl__verts *v, unsigned read, const size_t idx[4])
+/* On a planar quad with affine dependency m (sum m_i p_i = 0, sum m_i = 0: m_i is the signed
+ * area of the triangle of the other three corners), whether the attributes of read are affine
+ * by qgl_split_is_exact's rule at 1e-5: the corner of largest |m_i|, whose opposite triangle
+ * is the best conditioned, predicted from the other three by barycentrics -m_j / m_i. Its
+ * values only, with no geometry again. Texture coordinates are judged before their texture
+ * matrix (a linear map keeps affine coordinates affine). */
+static int values_affine(const double m[4], const qgl__verts *v, unsigned read, const size_t idx[4])
 {
+    int i = 0;
+    for (int c = 1; c < 4; c++)
+        i = fabs(m[c]) > fabs(m[i]) ? c : i;
+    size_t i1 = idx[(i + 1) & 3], i2 = idx[(i + 2) & 3], i3 = idx[(i + 3) & 3];
+    double b1 = -m[(i + 1) & 3] / m[i], b2 = -m[(i + 2) & 3] / m[i], b3 = -m[(i + 3) & 3] / m[i];
+    double bsum = fabs(b1) + fabs(b2) + fabs(b3);
     for (unsigned bits = read; bits; bits &= bits - 1) {
         int a = __builtin_ctz(bits), k = qgl__attribs[a].floats, clamp = clamped(a);
-        const float *f0 = v->attr[a] + (size_t)k * idx[0], *f1 = v->attr[a] + (size_t)k * idx[1];
-        const float *f2 = v->attr[a] + (size_t)k * idx[2], *f3 = v->attr[a] + (size_t)k * idx[3];
+        const float *f0 = v->attr[a] + (size_t)k * idx[i], *f1 = v->attr[a] + (size_t)k * i1;
+        const float *f2 = v->attr[a] + (size_t)k * i2, *f3 = v->attr[a] + (size_t)k * i3;
         if (same_bits(f0, f1, k) && same_bits(f0, f2, k) && same_bits(f0, f3, k))
             continue; /* one value (a glyph's colour), constant as attribs_constant judges it */
         for (int j = 0; j < k; j++) {
             double c0 = f0[j], c1 = f1[j], c2 = f2[j], c3 = f3[j];
             if (clamp)
                 c0 = qgl__clamp01(c0), c1 = qgl__clamp01(c1), c2 = qgl__clamp01(c2), c3 = qgl__clamp01(c3);
-            double pred = c1 - c2 + c3;
+            double pred = b1 * c1 + b2 * c2 + b3 * c3;
             if (pred - c0 == 0) /* most: equal values, or a grid's steps (infinities: NaN, not 0) */
                 continue;
-            if (!qgl__value_affine(c0, c1, c2, c3, pred, 3, 1e-5))
+            if (!qgl__value_affine(c0, c1, c2, c3, pred, bsum, 1e-5))
                 return 0;
         }
     }
     return 1;
 }
+
+/* A parallelogram's dependency: its diagonals halve each other. */
+static const double parallel_m[4] = {0.5, -0.5, 0.5, -0.5};
 
 /* For a shortcut whose verdict the later tests reach as well, which only saves time where it
  * passes (a colour map's cells seldom pass the parallelogram's affinity test, random corner
@@ -209,7 +225,7 @@ static void rate_note(qgl__rate *r, int passed, unsigned window)
 
 static int parallel_attribs(qgl_context *ctx, const qgl__verts *v, unsigned read, const size_t idx[4])
 {
-    int ok = parallel_values(v, read, idx);
+    int ok = values_affine(parallel_m, v, read, idx);
     rate_note(&ctx->par_rate, ok, 256);
     return ok;
 }
@@ -270,11 +286,16 @@ static int split_is_exact(qgl_context *ctx, const qgl__state *st, const qgl__ver
     return qgl_split_is_exact(p, packed, n, 1e-5);
 }
 
-/* Whether corners i and j carry the same captured attributes (positions aside), and the same
- * material where asked: compared in place, the first difference ending it. */
+/* What smooth lighting reads at a vertex besides its position (and a material): corners equal
+ * in these light alike. A normal-based texgen reads the normal too. The other attributes (texture
+ * and fog coordinates) pass on to the picture through affine maps. */
+enum { LIGHT_INPUTS = QGL__A_NORMAL | QGL__A_COLOR | QGL__A_COLOR2 };
+
+/* Whether corners i and j carry the same lighting inputs, and the same material where asked:
+ * compared in place, the first difference ending it. */
 static int same_inputs(const qgl__verts *v, size_t i, size_t j, int materials)
 {
-    for (unsigned bits = v->mask & ((1u << QGL__NATTR) - 1); bits; bits &= bits - 1) {
+    for (unsigned bits = v->mask & LIGHT_INPUTS; bits; bits &= bits - 1) {
         int a = __builtin_ctz(bits), n = qgl__attribs[a].floats;
         if (!same_bits(v->attr[a] + (size_t)n * i, v->attr[a] + (size_t)n * j, n))
             return 0;
@@ -283,10 +304,11 @@ static int same_inputs(const qgl__verts *v, size_t i, size_t j, int materials)
            same_bits(v->mat + QGL__MATERIAL_FLOATS * i, v->mat + QGL__MATERIAL_FLOATS * j, QGL__MATERIAL_FLOATS);
 }
 
-/* QGL__F_GROUPED: corners with equal attributes are grouped; a per-vertex function of the
- * attributes is a combination of the groups' indicators (1 on the group, 0 elsewhere), so it
+/* QGL__F_GROUPED: corners with equal lighting inputs are grouped; a per-vertex function of
+ * those inputs is a combination of the groups' indicators (1 on the group, 0 elsewhere), so it
  * is affine whenever they all are. Two corners sharing a normal on each long side of a
- * cylinder's quad are the common case: smooth lighting is then exactly the split. */
+ * cylinder's quad, and a billboard's one normal and colour, are the common cases: smooth
+ * lighting is then exactly the split. */
 static int quad_grouped(const qgl__verts *v, const size_t idx[4], const double p[4][3], int materials)
 {
     int group[4], ngroups = 0;
@@ -375,18 +397,27 @@ int qgl__external_planar(const qgl__verts *v, const size_t idx[4])
     return height <= 1e-5 * extent;
 }
 
-/* Attribute a affine over the quad (as the pipeline clamps it), or absent. */
-static int class_affine(const double p[4][3], const qgl__verts *v, int a, const size_t idx[4])
+/* The attributes of bits (the normal aside) affine over the quad as the pipeline clamps them,
+ * or absent: one test of them all. Texture coordinates are judged before their texture
+ * matrix, which keeps affine coordinates affine. */
+static int class_affine(const double p[4][3], const qgl__verts *v, unsigned bits, const size_t idx[4])
 {
-    double attr[4 * 4];
-    int n = qgl__attribs[a].floats;
-    if (!(v->mask & (1u << a)))
+    double attr[4 * QGL__ATTR_MAX];
+    int n = 0;
+    bits &= v->mask & QGL__A_ATTRIBS & ~QGL__A_NORMAL;
+    for (unsigned b = bits; b; b &= b - 1)
+        n += qgl__attribs[__builtin_ctz(b)].floats;
+    if (!n)
         return 1;
-    for (int c = 0; c < 4; c++)
-        for (int k = 0; k < n; k++) {
-            double x = v->attr[a][(size_t)n * idx[c] + (size_t)k];
-            attr[c * n + k] = clamped(a) ? qgl__clamp01(x) : x;
+    for (int c = 0; c < 4; c++) {
+        double *a = attr + c * n;
+        for (unsigned b = bits; b; b &= b - 1) {
+            int at = __builtin_ctz(b), f = qgl__attribs[at].floats;
+            const float *src = v->attr[at] + (size_t)f * idx[c];
+            for (int k = 0; k < f; k++)
+                *a++ = clamped(at) ? qgl__clamp01(src[k]) : src[k];
         }
+    }
     return qgl_split_is_exact(p, attr, n, 1e-5);
 }
 
@@ -400,11 +431,11 @@ uint16_t qgl__quad_facts(const qgl__verts *v, qgl_topology topo, size_t q)
         return 0;
     uint16_t f = QGL__F_PLANAR;
     f |= quad_grouped(v, idx, p, 1) ? QGL__F_GROUPED : 0;
-    f |= class_affine(p, v, QGL__AT_COLOR, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
-    f |= class_affine(p, v, QGL__AT_COLOR2, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
-    f |= class_affine(p, v, QGL__AT_FOG, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
+    f |= class_affine(p, v, QGL__A_COLOR, idx) ? QGL__F_AFFINE << QGL__FC_COLOR : 0;
+    f |= class_affine(p, v, QGL__A_COLOR2, idx) ? QGL__F_AFFINE << QGL__FC_COLOR2 : 0;
+    f |= class_affine(p, v, QGL__A_FOG, idx) ? QGL__F_AFFINE << QGL__FC_FOG : 0;
     for (int u = 0; u < QGL_MAX_TEXUNITS; u++)
-        if (class_affine(p, v, QGL__AT_TEX0 + u, idx))
+        if (class_affine(p, v, QGL__A_TEX0 << u, idx))
             f |= (uint16_t)(QGL__F_AFFINE << (QGL__FC_TEX0 + u));
     return f;
 }
@@ -429,11 +460,33 @@ static unsigned needed_facts(const qgl__state *st)
     return need;
 }
 
+/* Under smooth lighting (or a normal-based texgen) that reads no position, the colours are
+ * the lighting's, affine where its inputs group; the attributes it passes on must be affine
+ * as for an unlit quad. */
 static int exact_by_facts(const qgl__state *st, unsigned need, unsigned f)
 {
-    if (st->nonaffine)
-        return st->lit_by_inputs && (f & (QGL__F_PLANAR | QGL__F_GROUPED)) == (QGL__F_PLANAR | QGL__F_GROUPED);
+    if (st->nonaffine) {
+        if (!st->lit_by_inputs)
+            return 0;
+        need = (need & ~(QGL__F_AFFINE << QGL__FC_COLOR | QGL__F_AFFINE << QGL__FC_COLOR2)) | QGL__F_GROUPED;
+    }
     return (f & need) == need;
+}
+
+/* exact_by_facts' rule for a lit quad, tested now: the lighting inputs grouped, then the
+ * attributes passed on affine (by their values alone on a parallelogram). */
+static int lit_exact(const qgl_context *ctx, const qgl__verts *v, const size_t idx[4], const double p[4][3],
+                     int planar, int materials)
+{
+    unsigned rest = ctx->plan_read & ~LIGHT_INPUTS;
+    if (!quad_grouped(v, idx, p, materials))
+        return 0;
+    double m[4];
+    if (planar == 2)
+        return values_affine(parallel_m, v, rest, idx);
+    if (qgl__affine_dependency(p, m)) /* convex: its area weights serve as the core's would */
+        return values_affine(m, v, rest, idx);
+    return class_affine(p, v, rest, idx);
 }
 
 /* Whether the split is exact, and whether the quad is planar: from the cached facts of a
@@ -458,7 +511,7 @@ static int quad_exact(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     }
     int exact = split_is_exact(ctx, st, v, idx, clip, px, p, invisible, planar);
     if (!exact && *planar && st->nonaffine && st->lit_by_inputs)
-        exact = quad_grouped(v, idx, p, !st->quad_materials); /* one material: no group by it */
+        exact = lit_exact(ctx, v, idx, p, *planar, !st->quad_materials); /* one material: no group by it */
     /* lit corners, not grouped: judged by their colours, which light.c computes */
     if (!exact && *planar && st->nonaffine && invisible && st->lit_cpu)
         exact = split_invisible(ctx, st, v, idx, clip, px, p);

@@ -662,9 +662,10 @@ enum { QGL__P_EITHER = 1 << 6 };
 /* Per-quad facts that do not depend on the GL state (cached by retained batches). */
 enum {
     QGL__F_PLANAR = 1 << 0,  /* every corner has w > 0 and the quad is planar */
-    QGL__F_GROUPED = 1 << 1, /* the corners whose captured attributes are all equal form groups
-                                whose indicator functions are affine: then any per-vertex
-                                function of the attributes alone is affine over the quad */
+    QGL__F_GROUPED = 1 << 1, /* the corners whose lighting inputs (normal, colours, material)
+                                are all equal form groups whose indicator functions are affine:
+                                then any per-vertex function of those alone is affine over
+                                the quad */
     QGL__F_AFFINE = 1 << 2   /* QGL__F_AFFINE << class: that attribute (QGL__FC_*) is affine in
                                 object space over the quad, or absent */
 };
