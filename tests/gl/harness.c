@@ -58,6 +58,15 @@ void th_free(th_ctx *t)
     free(t->buf);
 }
 
+int th_need_geometry_shaders(th_ctx *t)
+{
+    if (qgl_gl_shader_level(t->qgl) == 150)
+        return 0;
+    th_free(t);
+    printf("no geometry shader path: skipped\n");
+    return 77;
+}
+
 const unsigned char *th_px(const th_ctx *t, int x, int y)
 {
     return t->buf + 4 * ((size_t)y * t->w + x);

@@ -18,6 +18,9 @@ typedef struct th_ctx {
  * stencil, current, plus a qgl context on it (desc may be NULL). Returns 0, or 77 to skip. */
 int th_init(th_ctx *t, int w, int h, const qgl_gl_desc *desc);
 void th_free(th_ctx *t);
+/* 0 where t's qgl context found the geometry shader path (shader level 150); otherwise frees
+ * t, says so and returns 77, the skip status, for main to return. */
+int th_need_geometry_shaders(th_ctx *t);
 void *th_get_proc(const char *name);
 
 /* Pixel (x, y) channel c, from the framebuffer after glFinish. */

@@ -411,10 +411,8 @@ int main(void)
     unsetenv("QUADGL_COSTS");
     if (r)
         return r;
-    if (qgl_gl_shader_level(t.qgl) != 150) {
-        th_free(&t);
-        return 77;
-    }
+    if ((r = th_need_geometry_shaders(&t)) != 0)
+        return r;
     budget(&t);
     grouped(&t);
     seam(&t, QGL_METHOD_AUTO, QGL_METHOD_MVC, 0.05, 1.0, 0.3f, "grid | shader path");

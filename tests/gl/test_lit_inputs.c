@@ -214,11 +214,8 @@ int main(void)
     int rc = th_init(&t, W, W, NULL);
     if (rc)
         return rc;
-    if (qgl_gl_shader_level(t.qgl) != 150) {
-        th_free(&t);
-        printf("no geometry shader path: skipped\n");
-        return 77;
-    }
+    if ((rc = th_need_geometry_shaders(&t)) != 0)
+        return rc;
     qgl_gl_set_split_error(t.qgl, -1); /* only an exact split may split */
     unsigned tex = sc_texture(0);
     sc_camera(-35, 20);

@@ -262,11 +262,8 @@ int main(void)
     int rc = th_init(&t, W, W, NULL);
     if (rc)
         return rc;
-    if (qgl_gl_shader_level(t.qgl) != 150) {
-        th_free(&t);
-        printf("no geometry shader path: skipped\n");
-        return 77;
-    }
+    if ((rc = th_need_geometry_shaders(&t)) != 0)
+        return rc;
     make_data();
     GLuint tex = make_texture();
     qgl_quad_batch a = quads_batch(), b = strip_batch();
