@@ -363,16 +363,6 @@ int pl_hook_material(pl_ctx *x, GLenum face, GLenum pname, const GLfloat *fv, co
     }
     if (n == 0 || (!fv && !iv))
         return 0; /* the driver's own error (it saw no glBegin: the same one) */
-    if (!x->compiling && x->prim.v.n == 0 && x->prim.nmat == 0) {
-        /* Before the first vertex (rubik's cubits set their colour there) a material is one
-         * given before glBegin: the driver takes it now, after the quads that wait, and the
-         * primitive stays one that may wait with the next. */
-        if (x->batch.v.n)
-            pl_batch_flush(x);
-        if (!x->qgl || given != n || !qgl__material_set(x->qgl, face, pname, material_values(fv, iv, n, given, v)))
-            pl_mark(x, PL_D_LIGHT);
-        return 0;
-    }
     pl_prim_settle(x); /* nor materials */
     pl_push_material(x, face, pname, material_values(fv, iv, n, given, v), n);
     return 1;

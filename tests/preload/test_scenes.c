@@ -1028,56 +1028,6 @@ static void scene_quad_materials(pt_run *r)
     r->min_quads = 3;
 }
 
-/* A glMaterial between glBegin and the first vertex, as programs colour each part of a lit
- * model (rubik's cubits): it is one given before glBegin, so the quads still wait in the batch
- * with the primitives that follow, one draw per material instead of two. Five groups of four
- * one-quad primitives, the first of each setting the group's material (after a glNormal in
- * every other group); each quad is lit by a directional light along its normal, 1.2 times its
- * material (the scene's ambient 0.2 and the light's diffuse 1). */
-static void scene_leading_materials(pt_run *r)
-{
-    static const float dir[4] = {0, 0, 1, 0};
-    static const float ambient[4] = {0.2f, 0.2f, 0.2f, 1}, diffuse[4] = {0.8f, 0.8f, 0.8f, 1};
-    uint64_t before[PT_NCOUNTERS];
-    float v[4][2], lit[4][4];
-    pt_begin_frame();
-    glEnable(GL_LIGHTING);
-    glEnable(GL_LIGHT0);
-    glLightfv(GL_LIGHT0, GL_POSITION, dir);
-    glNormal3f(0, 0, 1);
-    pt_counters(before);
-    for (int g = 0; g < 5; g++) {
-        const float m[4] = {0.2f * (float)g, 0.75f - 0.1f * (float)g, 0.3f + 0.05f * (float)g, 1};
-        for (int k = 4 * g; k < 4 * g + 4; k++) {
-            cell_quad(k, v);
-            glBegin(GL_QUADS);
-            if (k == 4 * g && g % 2)
-                glNormal3f(0, 0, 1);
-            if (k == 4 * g)
-                glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, m);
-            for (int i = 0; i < 4; i++)
-                glVertex2fv(v[i]);
-            glEnd();
-            for (int i = 0; i < 4; i++) {
-                for (int c = 0; c < 3; c++)
-                    lit[i][c] = 1.2f * m[c];
-                lit[i][3] = 1;
-            }
-            pt_expect(r, v, lit, 0);
-        }
-    }
-    uint64_t d = draws_since(before);
-    if (d > 6)
-        snprintf(r->failure, sizeof r->failure, "5 groups of primitives, each led by a material, took %llu draws",
-                 (unsigned long long)d);
-    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, ambient);
-    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, diffuse);
-    glDisable(GL_LIGHTING);
-    r->native_equal = 1;
-    r->checks_reference = 1;
-    r->min_quads = 20;
-}
-
 /* The material state as values to compare with the driver's (bit patterns of the floats). */
 static void material_values(pt_run *r)
 {
@@ -1486,7 +1436,6 @@ static const pt_scene scenes[] = {
     {"materials", scene_materials},
     {"material_change", scene_material_change},
     {"quad_materials", scene_quad_materials},
-    {"leading_materials", scene_leading_materials},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
     {"list_grid", scene_list_grid},
