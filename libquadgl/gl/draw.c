@@ -908,11 +908,13 @@ static double parallel_residual(const float *a, int size, const size_t idx[4], i
 
 /* Whether split_invisible would judge a quad of this state by its residuals alone, with no
  * lighting, texture matrix or combiner between the captured values and the picture: the
- * batch's, worked out once (ctx->plan_fast). */
+ * batch's, worked out once (ctx->plan_fast). Lit quads that are not non-affine are flat
+ * shaded: one colour each, and with one material each (quad_materials) nothing the
+ * residuals leave out varies over the quad. */
 static int parallel_state(const qgl_context *ctx, const qgl__state *st)
 {
     if (ctx->method != QGL_METHOD_AUTO || ctx->split_error < 0 || !st->modelled || st->nonaffine ||
-        st->pv_material || st->lit_cpu)
+        (st->pv_material && !st->quad_materials) || st->lit_cpu)
         return 0;
     for (int u = 0; u < st->ffp.nunits; u++) {
         const qgl__unit_key *uk = &st->ffp.unit[u];

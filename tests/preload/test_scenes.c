@@ -1183,6 +1183,62 @@ static void scene_texture(pt_run *r)
     r->min_quads = 1;
 }
 
+/* Flat-shaded, lit, textured parallelograms with a glMaterial before each quad's first vertex
+ * (rubik's facelets, textured): one colour and one material per quad, so the split can differ
+ * only by the texture coordinates, here a 1/128 texel off affine at one corner, within the
+ * invisible split's 1/32. auto splits every quad by that bound, and the pixels are the
+ * driver's own. */
+static void scene_flat_materials(pt_run *r)
+{
+    static const float dir[4] = {0, 0, 1, 0};
+    static const float ambient[4] = {0.2f, 0.2f, 0.2f, 1}, diffuse[4] = {0.8f, 0.8f, 0.8f, 1};
+    GLubyte tex[8][8][4];
+    uint64_t before[PT_NCOUNTERS], after[PT_NCOUNTERS];
+    float v[4][2];
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) {
+            GLubyte c = (GLubyte)(40 + 25 * x);
+            tex[y][x][0] = c, tex[y][x][1] = (GLubyte)(220 - 20 * y), tex[y][x][2] = 128, tex[y][x][3] = 255;
+        }
+    pt_begin_frame();
+    GLuint name = texture_2d(8, 8, tex, GL_LINEAR);
+    glEnable(GL_TEXTURE_2D);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    glShadeModel(GL_FLAT);
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glNormal3f(0, 0, 1);
+    pt_counters(before);
+    glBegin(GL_QUADS);
+    for (int k = 0; k < 9; k++) {
+        const float m[4] = {0.3f + 0.07f * (float)k, 0.8f - 0.05f * (float)k, 0.4f, 1};
+        float x0 = -0.875f + 0.625f * (float)(k % 3), y0 = -0.875f + 0.625f * (float)(k / 3);
+        v[0][0] = x0, v[0][1] = y0, v[1][0] = x0 + 0.5f, v[1][1] = y0 + 0.0625f; /* exact in floats */
+        v[2][0] = x0 + 0.5625f, v[2][1] = y0 + 0.5f, v[3][0] = x0 + 0.0625f, v[3][1] = y0 + 0.4375f;
+        glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, m);
+        for (int i = 0; i < 4; i++) {
+            float s = i == 1 || i == 2 ? 1.0f : 0.0f, t = i >= 2 ? 1.0f : 0.0f;
+            glTexCoord2f(s + (i == 2 ? 1.0f / (128 * 8) : 0.0f), t);
+            glVertex2fv(v[i]);
+        }
+    }
+    glEnd();
+    glFinish();
+    if (pt_counters(after) == 0 && (after[PT_SPLIT] - before[PT_SPLIT] != 9 || after[PT_MVC] != before[PT_MVC]))
+        snprintf(r->failure, sizeof r->failure, "9 flat lit quads with one material each: %llu split, %llu smooth",
+                 (unsigned long long)(after[PT_SPLIT] - before[PT_SPLIT]),
+                 (unsigned long long)(after[PT_MVC] - before[PT_MVC]));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, ambient);
+    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, diffuse);
+    glDisable(GL_LIGHTING);
+    glShadeModel(GL_SMOOTH);
+    glDisable(GL_TEXTURE_2D);
+    glDeleteTextures(1, &name);
+    r->native_equal = 1;
+    r->min_quads = 9;
+}
+
 /* Under GL_REPLACE an alpha texture keeps the primary colour and an RGB one replaces it: a
  * key built for a texture of the other format shows. */
 static const GLubyte tex_alpha[4] = {200, 200, 200, 200};
@@ -1436,6 +1492,7 @@ static const pt_scene scenes[] = {
     {"materials", scene_materials},
     {"material_change", scene_material_change},
     {"quad_materials", scene_quad_materials},
+    {"flat_materials", scene_flat_materials},
     {"unlit_materials", scene_unlit_materials},
     {"list_strips", scene_list_strips},
     {"list_grid", scene_list_grid},
