@@ -1528,7 +1528,7 @@ static void plan_runs(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     }
 }
 
-static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
+static int plan(qgl_context *ctx, qgl__state *st, const qgl__verts *v, qgl_topology topo, size_t nq,
                 const qgl__facts *facts)
 {
     if (!ensure((void **)&ctx->path, &ctx->path_cap, nq, 1))
@@ -1539,6 +1539,7 @@ static int plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, qgl
         memset(ctx->path, pass ? QGL__P_PASS : QGL__P_SPLIT, nq);
         return 1;
     }
+    qgl__state_xform(ctx, st); /* every path but these two reads it */
     if (!ensure((void **)&ctx->clip, &ctx->clip_cap, 4 * v->n, sizeof(double)))
         return 0;
     transform_all(st->mvp, v->pos, v->n, ctx->clip);

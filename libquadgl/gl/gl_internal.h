@@ -637,6 +637,7 @@ struct qgl_context {
     qgl__rate par_rate;       /* parallelograms' values tested lately (draw.c) */
     qgl__rate fast_rate;      /* parallelograms' invisible splits tested lately (draw.c) */
     unsigned state_valid;     /* QGL__D_* groups of it unchanged since */
+    int xform_stale;          /* the transform group changed since it was last read */
     qgl__texfacts tex_facts[QGL__TEX_FACTS]; /* by texture name modulo the size */
     int state_tracked;        /* the owner marks changes (qgl__state_dirty) */
     struct qgl__glsl120 *glsl120; /* the GLSL 1.20 path's programs and buffers, or NULL */
@@ -713,8 +714,11 @@ extern const double qgl__identity[16];
 /* state.c: the owner will mark every change of the groups from now on; a group changed. */
 void qgl__state_track(qgl_context *ctx);
 void qgl__state_dirty(qgl_context *ctx, unsigned groups);
-/* The state as a draw now would read it (refreshing what changed). */
+/* The state as a draw now would read it (refreshing what changed), but for the transform
+ * group (matrices, viewport): only planning and the smooth paths read that, and a draw asks
+ * for it first with qgl__state_xform, into ctx->state and into its copy st. */
 const qgl__state *qgl__state_now(qgl_context *ctx);
+void qgl__state_xform(qgl_context *ctx, qgl__state *st);
 /* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */
 size_t qgl__nquads(qgl_topology topo, size_t n);
 size_t qgl__corner(qgl_topology topo, size_t q, int c);

@@ -570,16 +570,16 @@ const qgl__state *qgl__state_now(qgl_context *ctx)
     }
     if (need & QGL__D_LIGHT)
         ctx->lightvals.materials_valid = 0;
-    if (need & QGL__D_XFORM)
+    if (need & QGL__D_XFORM) {
         ctx->lightvals.normal_valid = 0;
+        ctx->xform_stale = 1; /* read when a draw plans (qgl__state_xform): most split draws never do */
+    }
     if (need & QGL__D_RASTER)
         query_raster(ctx, c);
     if (need & QGL__D_TEXIMAGE)
         memset(ctx->tex_facts, 0, sizeof ctx->tex_facts);
     if ((need & QGL__D_FFP) || ((need & (QGL__D_TEX | QGL__D_TEXIMAGE)) && !query_bound(ctx, c)))
         query_ffp_group(ctx, c);
-    if (need & QGL__D_XFORM)
-        query_xform(ctx, c);
     if (need & QGL__D_BIND)
         query_bind(ctx, c);
     if (need & QGL__D_ORDER)
@@ -587,6 +587,22 @@ const qgl__state *qgl__state_now(qgl_context *ctx)
     derive(ctx, c);
     ctx->state_valid = QGL__D_ALL;
     return c;
+}
+
+void qgl__state_xform(qgl_context *ctx, qgl__state *st)
+{
+    qgl__state *c = &ctx->state;
+    if (ctx->xform_stale) {
+        query_xform(ctx, c);
+        ctx->xform_stale = 0;
+    }
+    if (st == c)
+        return;
+    memcpy(st->viewport, c->viewport, sizeof st->viewport);
+    memcpy(st->mvp, c->mvp, sizeof st->mvp);
+    memcpy(st->modelview, c->modelview, sizeof st->modelview);
+    memcpy(st->texmat, c->texmat, sizeof st->texmat);
+    st->texmat_identity = c->texmat_identity;
 }
 
 /* The state of this draw, into a copy the draw may adjust. */
