@@ -266,7 +266,7 @@ static int draw(bench *b, const qgl__verts *v, draw_kind kind)
     }
     gl->UseProgram(kind == DRAW_MVC ? b->prog : 0);
     if (kind == DRAW_MVC)
-        qgl__program_viewport(b->ctx, b->prog, b->st.viewport);
+        qgl__program_viewport(b->ctx, b->prog, b->st.xf.viewport);
     return qgl__grid_draw_arrays(b->ctx, v, kind == DRAW_MVC ? GL_LINES_ADJACENCY : GL_QUADS);
 }
 
@@ -353,7 +353,7 @@ static void run(qgl_context *ctx, struct qgl__costs *c)
     b.prog = qgl__program(ctx, NULL);
     if (mode != GL_RENDER || b.grid < 0 || !b.prog)
         return;
-    b.st.viewport[2] = b.st.viewport[3] = SIZE;
+    b.st.xf.viewport[2] = b.st.xf.viewport[3] = SIZE;
     b.st.shade_model = GL_SMOOTH;
     saved s;
     enter(ctx, &s);

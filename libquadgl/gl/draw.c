@@ -249,7 +249,7 @@ static int gather_attribs(const qgl_context *ctx, const qgl__state *st, const qg
                 continue;
             }
             double t[4];
-            transform(st->ffp.unit[u].target ? st->texmat[u] : qgl__identity, src, t);
+            transform(st->ffp.unit[u].target ? st->xf.texmat[u] : qgl__identity, src, t);
             for (int j = 0; j < 4; j++)
                 a[k++] = t[j];
         }
@@ -720,10 +720,10 @@ static double texel_residual(const qgl__state *st, const qgl__verts *v, const si
     double t[4][4];
     for (int c = 0; c < 4; c++) {
         const float *s = v->tex[u] + 4 * idx[c];
-        if (st->texmat_identity & (1u << u))
+        if (st->xf.texmat_identity & (1u << u))
             t[c][0] = s[0], t[c][1] = s[1], t[c][2] = s[2], t[c][3] = s[3];
         else
-            transform(st->texmat[u], s, t[c]);
+            transform(st->xf.texmat[u], s, t[c]);
         if (!(t[c][3] > 0) || fabs(t[c][3] - t[0][3]) > 1e-6 * t[0][3])
             return INFINITY;
     }
@@ -919,7 +919,7 @@ static int parallel_state(const qgl_context *ctx, const qgl__state *st)
     for (int u = 0; u < st->ffp.nunits; u++) {
         const qgl__unit_key *uk = &st->ffp.unit[u];
         if (uk->target && (uk->env == QGL__E_COMBINE || uk->target == QGL__T_CUBE || uk->gen[0] || uk->gen[1] ||
-                           uk->gen[2] || uk->gen[3] || !(st->texmat_identity & (1u << u))))
+                           uk->gen[2] || uk->gen[3] || !(st->xf.texmat_identity & (1u << u))))
             return 0;
     }
     return 1;
@@ -1010,7 +1010,7 @@ static unsigned char plan_quad(qgl_context *ctx, const qgl__state *st, const qgl
     }
     int auto_ = ctx->method == QGL_METHOD_AUTO;
     if (auto_ && !external) /* the bounding box and the invisible split's samples measure them */
-        pixel_corners(clip, st->viewport, px);
+        pixel_corners(clip, st->xf.viewport, px);
     if (auto_ && !external && !st->pv_material && bbox_area_px(px) < ctx->invisible_area_px)
         return QGL__P_SPLIT | QGL__P_EITHER;
     int exact = quad_exact(ctx, st, v, idx, clip, px, auto_ && !external && judge, facts, q, &planar);
@@ -1242,7 +1242,7 @@ static int draw_mvc(qgl_context *ctx, const qgl__state *st, const qgl__verts *v,
         return 0;
     if (*bound != (GLint)prog)
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
-    qgl__program_viewport(ctx, prog, st->viewport);
+    qgl__program_viewport(ctx, prog, st->xf.viewport);
     if (topo == QGL_QUADS)
         ctx->gl.DrawArrays(GL_LINES_ADJACENCY, (GLint)(4 * q0), (GLsizei)(4 * nq));
     else
@@ -1542,7 +1542,7 @@ static int plan(qgl_context *ctx, qgl__state *st, const qgl__verts *v, qgl_topol
     qgl__state_xform(ctx, st); /* every path but these two reads it */
     if (!ensure((void **)&ctx->clip, &ctx->clip_cap, 4 * v->n, sizeof(double)))
         return 0;
-    transform_all(st->mvp, v->pos, v->n, ctx->clip);
+    transform_all(st->xf.mvp, v->pos, v->n, ctx->clip);
     ctx->plan_read = attribs_read(st, v->mask); /* the state's, the same for every quad */
     ctx->plan_need = needed_facts(st);
     ctx->plan_fast = parallel_state(ctx, st);

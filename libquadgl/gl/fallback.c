@@ -536,7 +536,7 @@ int qgl__subdivide(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
     double pos[4][3], P[4][2];
     /* clip x and y scaled by the viewport's half size: screen points in pixels from its
      * centre, so the weights are those of the quad as it appears (as on the shader path) */
-    const double scale[4] = {0.5 * st->viewport[2], 0.5 * st->viewport[3], 1, 1};
+    const double scale[4] = {0.5 * st->xf.viewport[2], 0.5 * st->xf.viewport[3], 1, 1};
     double clip[4][4];
     int front = 1, finite_obj = 1, seen = 0;
     for (int c = 0; c < 4; c++) {

@@ -435,8 +435,19 @@ typedef struct qgl__texfacts {
     float size[3];
 } qgl__texfacts;
 
+/* The transform group (QGL__D_XFORM), which only planning and the smooth paths read: a draw
+ * asks for it with qgl__state_xform, so it is read from the driver only then. */
+typedef struct qgl__xform {
+    GLint viewport[4];
+    double mvp[16];           /* projection * modelview, column-major */
+    double modelview[16];
+    double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
+    unsigned texmat_identity; /* bit u: unit u's texture matrix is the identity (the usual case:
+                                 the planner reads the coordinates as they are) */
+} qgl__xform;
+
 typedef struct qgl__state {
-    GLint program, render_mode, polygon_mode[2], shade_model, viewport[4], active_texture;
+    GLint program, render_mode, polygon_mode[2], shade_model, active_texture;
     GLint vao, array_buffer, client_texture; /* bindings a draw puts back */
     int clamp;                /* GL_CLAMP_VERTEX_COLOR */
     int first_vertex_pv;      /* GL_FIRST_VERTEX_CONVENTION, and quads follow it */
@@ -447,11 +458,7 @@ typedef struct qgl__state {
     int own_pipeline;         /* the application's own programs replace fixed function (a GLSL
                                  program or pipeline, ARB programs): the driver draws its quads
                                  as they are, since no path of ours runs its programs */
-    double mvp[16];           /* projection * modelview, column-major */
-    double modelview[16];
-    double texmat[QGL_MAX_TEXUNITS][16]; /* texture matrices */
-    unsigned texmat_identity; /* bit u: unit u's texture matrix is the identity (the usual case:
-                                 the planner reads the coordinates as they are) */
+    qgl__xform xf;            /* valid once the draw has asked (qgl__state_xform) */
     int texture2d;            /* unit 0 samples GL_TEXTURE_2D */
     int tex_replace;          /* env mode REPLACE (else MODULATE) */
     int tex_no_alpha;         /* the texture's base format has no alpha (REPLACE keeps Af) */
@@ -715,8 +722,7 @@ extern const double qgl__identity[16];
 void qgl__state_track(qgl_context *ctx);
 void qgl__state_dirty(qgl_context *ctx, unsigned groups);
 /* The state as a draw now would read it (refreshing what changed), but for the transform
- * group (matrices, viewport): only planning and the smooth paths read that, and a draw asks
- * for it first with qgl__state_xform, into ctx->state and into its copy st. */
+ * group (st->xf), which a draw asks for with qgl__state_xform, into ctx->state and its copy st. */
 const qgl__state *qgl__state_now(qgl_context *ctx);
 void qgl__state_xform(qgl_context *ctx, qgl__state *st);
 /* Number of quads in n vertices of a topology; corner c of quad q is vertex corner(q, c). */

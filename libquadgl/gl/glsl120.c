@@ -605,7 +605,7 @@ int qgl__glsl120_draw(qgl_context *ctx, const qgl__state *st, const qgl__verts *
     if (*bound != (GLint)prog)
         ctx->gl.UseProgram(prog), *bound = (GLint)prog;
     /* the weights in isotropic pixel units: x and y scaled by the viewport's half size */
-    ctx->gl.Uniform2f(px_loc, 0.5f * (float)st->viewport[2], 0.5f * (float)st->viewport[3]);
+    ctx->gl.Uniform2f(px_loc, 0.5f * (float)st->xf.viewport[2], 0.5f * (float)st->xf.viewport[3]);
     if (!ctx->glsl120->vao || !submit_arrays(ctx, &l, n))
         submit_immediate(ctx, &l, n);
     if (!ctx->has_vao) /* no restore() follows: give the application its program back now */

@@ -219,7 +219,7 @@ int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v
         lv->materials_valid = 1;
     }
     if (!lv->normal_valid) {
-        lv->normal_ok = normal_matrix(st->modelview, lv->nmat, &lv->rescale);
+        lv->normal_ok = normal_matrix(st->xf.modelview, lv->nmat, &lv->rescale);
         lv->normal_valid = 1;
     }
     if (!lv->normal_ok)
@@ -244,8 +244,8 @@ int qgl__lit_colours(qgl_context *ctx, const qgl__state *st, const qgl__verts *v
             for (int r = 0; r < 3; r++) {
                 n[r] = lv->nmat[r][0] * nr[0] + lv->nmat[r][1] * nr[1] + lv->nmat[r][2] * nr[2];
                 /* the shader's eye position: (M v).xyz, not divided by its w */
-                eye[r] = st->modelview[r] * o[0] + st->modelview[4 + r] * o[1] + st->modelview[8 + r] * o[2] +
-                         st->modelview[12 + r] * o[3];
+                eye[r] = st->xf.modelview[r] * o[0] + st->xf.modelview[4 + r] * o[1] + st->xf.modelview[8 + r] * o[2] +
+                         st->xf.modelview[12 + r] * o[3];
             }
             if (k->flags & QGL__KF_NORMALIZE)
                 normalize3(n);

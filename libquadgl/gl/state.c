@@ -495,18 +495,18 @@ static void query_xform(qgl_context *ctx, qgl__state *st)
 {
     struct qgl__gl *gl = &ctx->gl;
     double pr[16];
-    gl->GetIntegerv(GL_VIEWPORT, st->viewport);
-    gl->GetDoublev(GL_MODELVIEW_MATRIX, st->modelview);
+    gl->GetIntegerv(GL_VIEWPORT, st->xf.viewport);
+    gl->GetDoublev(GL_MODELVIEW_MATRIX, st->xf.modelview);
     gl->GetDoublev(GL_PROJECTION_MATRIX, pr);
-    mat_mul(pr, st->modelview, st->mvp);
+    mat_mul(pr, st->xf.modelview, st->xf.mvp);
     int switched = 0;
-    st->texmat_identity = 0;
+    st->xf.texmat_identity = 0;
     for (int u = 0; u < st->ffp.nunits; u++) {
         if (!st->ffp.unit[u].target)
             continue;
         gl->ActiveTexture(GL_TEXTURE0 + (GLenum)u);
-        gl->GetDoublev(GL_TEXTURE_MATRIX, st->texmat[u]);
-        st->texmat_identity |= memcmp(st->texmat[u], qgl__identity, sizeof qgl__identity) == 0 ? 1u << u : 0;
+        gl->GetDoublev(GL_TEXTURE_MATRIX, st->xf.texmat[u]);
+        st->xf.texmat_identity |= memcmp(st->xf.texmat[u], qgl__identity, sizeof qgl__identity) == 0 ? 1u << u : 0;
         switched = 1;
     }
     if (switched)
@@ -596,13 +596,8 @@ void qgl__state_xform(qgl_context *ctx, qgl__state *st)
         query_xform(ctx, c);
         ctx->xform_stale = 0;
     }
-    if (st == c)
-        return;
-    memcpy(st->viewport, c->viewport, sizeof st->viewport);
-    memcpy(st->mvp, c->mvp, sizeof st->mvp);
-    memcpy(st->modelview, c->modelview, sizeof st->modelview);
-    memcpy(st->texmat, c->texmat, sizeof st->texmat);
-    st->texmat_identity = c->texmat_identity;
+    if (st != c)
+        st->xf = c->xf;
 }
 
 /* The state of this draw, into a copy the draw may adjust. */

@@ -189,7 +189,7 @@ int qgl__grid_plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
     if ((!forced && !(ctx->costs && ctx->costs->valid)) || !state_allows(ctx, st, planar) ||
         (inplane(ctx) && !planar)) /* a non-planar quad's view-invariant form is its patch's */
         return 0;
-    double sv[4][2], pv[4][2], m[4], n[4], wmax = 0, hw = 0.5 * st->viewport[2], hh = 0.5 * st->viewport[3];
+    double sv[4][2], pv[4][2], m[4], n[4], wmax = 0, hw = 0.5 * st->xf.viewport[2], hh = 0.5 * st->xf.viewport[3];
     for (int i = 0; i < 4; i++) {
         if (!(clip[i][3] > 0))
             return 0;
@@ -199,7 +199,7 @@ int qgl__grid_plan(qgl_context *ctx, const qgl__state *st, const qgl__verts *v, 
     const double (*shape)[2] = inplane(ctx) ? (const double(*)[2])pv : (const double(*)[2])sv;
     if ((inplane(ctx) && !inplane_corners(v, idx, pv)) || !qgl_mvcgrid_fits(shape))
         return 0;
-    double area = screen_area(sv, st->viewport);
+    double area = screen_area(sv, st->xf.viewport);
     if (!forced && !qgl__grid_cheaper(ctx, area, 0))
         return 0; /* not even the coarsest grid pays: no need to judge the error */
     if (!screen_dependency(shape, m))
@@ -268,7 +268,7 @@ static const qgl_mvcgrid *quad_weights(qgl_context *ctx, const qgl__state *st, c
             c[i][0] = pv[i][0], c[i][1] = pv[i][1], c[i][2] = 0, c[i][3] = 1;
             continue;
         }
-        c[i][0] = x[0] * 0.5 * st->viewport[2], c[i][1] = x[1] * 0.5 * st->viewport[3];
+        c[i][0] = x[0] * 0.5 * st->xf.viewport[2], c[i][1] = x[1] * 0.5 * st->xf.viewport[3];
         c[i][2] = x[2], c[i][3] = x[3];
     }
     if (grid && qgl_mvcgrid_weights(grid, (const double(*)[4])c, gr->pts, gr->persp))
